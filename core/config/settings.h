@@ -1,0 +1,82 @@
+// disco — solver settings, read from a YAML file (configs/disco.yaml) and command-line
+// overrides.
+//
+// The settings file is one YAML mapping of sections ("ipopt:", "elastic:", ...). Code asks
+// for values by dotted key ("elastic.zeta_max") with the accessor of the expected type; a
+// missing key or a value of the wrong type is an InputError that names the file, the line
+// and the key (or "--set" and the key, when the value came from an override).
+//
+// Typing rules: number() takes any plain YAML number, including .inf / -.inf, but not .nan
+// nor a quoted string; integer() takes only integers ("2.5" and "1e3" are rejected);
+// boolean() takes YAML booleans (true/false, yes/no, on/off); text() takes any scalar.
+//
+// Overrides: "KEY=VALUE" with VALUE parsed as a YAML scalar. KEY must name an existing value
+// (not a section) of the loaded document; keys "ipopt.NAME" may also be new, because Ipopt
+// checks its own options. Duplicate keys in the file are rejected on load.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace disco {
+
+class Settings {
+ public:
+  // An empty document with no source: every lookup fails. Useful only as a placeholder.
+  Settings();
+  ~Settings();
+  Settings(const Settings& other);  // deep copy: overriding a copy leaves the original alone
+  Settings& operator=(const Settings& other);
+  Settings(Settings&&) noexcept;
+  Settings& operator=(Settings&&) noexcept;
+
+  // Reads the settings file at `path`. InputError if it cannot be opened, is not valid YAML,
+  // is not a mapping or repeats a key.
+  static Settings load(const std::string& path);
+  // Same, from text in memory; `source` names it in messages.
+  static Settings parse(const std::string& text, const std::string& source);
+
+  // Applies "a.b.c=value" (see the file comment). InputError naming "--set" and the key if
+  // the assignment is malformed, the key does not exist (outside "ipopt."), names a section,
+  // or the value is not a single YAML scalar.
+  void apply_override(const std::string& assignment);
+
+  // The value at dotted `key`. InputError if it is missing or has the wrong type; the
+  // message gives the source, the line and the key.
+  double number(const std::string& key) const;
+  int integer(const std::string& key) const;
+  bool boolean(const std::string& key) const;
+  std::string text(const std::string& key) const;
+
+  // One scalar entry of a mapping section. `line` is the 1-based line in the file, or 0 when
+  // the entry was set by an override.
+  struct Entry {
+    std::string name, value;
+    int line;
+  };
+  // The scalar entries of mapping section `key`, in file order (entries added by overrides
+  // come last), e.g. the "ipopt" options to hand to Ipopt. An empty (null) section gives no
+  // entries. InputError if the section is missing, is not a mapping, or holds a non-scalar.
+  std::vector<Entry> section(const std::string& key) const;
+
+  // The file (or `source` given to parse()).
+  const std::string& source() const;
+
+  // Where `key` was defined, for messages made by other code: "FILE:LINE", or "--set" when
+  // an override set it. For a key that does not exist, just "FILE".
+  std::string where(const std::string& key) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Splits command-line "--set" assignments: entries starting with "scene." go to `scene`
+// with that prefix removed (for load_scene), all others to `settings` (for
+// Settings::apply_override), keeping their order. Appends to both outputs. InputError
+// naming "--set" for an entry without '=' or with an empty key.
+void split_overrides(const std::vector<std::string>& sets, std::vector<std::string>& scene,
+                     std::vector<std::string>& settings);
+
+}  // namespace disco

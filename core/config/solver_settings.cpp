@@ -1,0 +1,50 @@
+#include "core/config/solver_settings.h"
+
+#include "core/util/errors.h"
+
+namespace disco {
+
+std::vector<IpoptOption> ipopt_options(const Settings& settings) {
+  std::vector<IpoptOption> out;
+  for (const auto& e : settings.section("ipopt"))
+    out.push_back({e.name, e.value, e.line > 0 ? settings.source() + ":" + std::to_string(e.line)
+                                               : std::string("--set")});
+  return out;
+}
+
+namespace {
+
+double positive(const Settings& s, const std::string& key) {
+  const double v = s.number(key);
+  if (!(v > 0)) throw InputError(s.where(key) + ": key '" + key + "': must be positive");
+  return v;
+}
+
+}  // namespace
+
+ElasticSettings elastic_settings(const Settings& s) {
+  ElasticSettings e;
+  const std::string f = s.text("elastic.formulation");
+  if (f == "lumped") {
+    e.formulation = ElasticFormulation::kLumped;
+  } else if (f == "per_pair") {
+    e.formulation = ElasticFormulation::kPerPair;
+  } else {
+    throw InputError(s.where("elastic.formulation") +
+                     ": key 'elastic.formulation': must be 'lumped' or 'per_pair', got '" + f + "'");
+  }
+  e.zeta = positive(s, "elastic.zeta");
+  e.zeta_factor = positive(s, "elastic.zeta_factor");
+  if (e.zeta_factor <= 1)
+    throw InputError(s.where("elastic.zeta_factor") + ": key 'elastic.zeta_factor': must exceed 1");
+  e.zeta_max = positive(s, "elastic.zeta_max");
+  e.stall_change = s.number("elastic.stall_change");
+  e.complementarity_tol = positive(s, "elastic.complementarity_tolerance");
+  e.violation_tol = positive(s, "elastic.violation_tolerance");
+  e.polish = s.boolean("elastic.polish");
+  return e;
+}
+
+std::string default_settings_path() { return std::string(DISCO_SOURCE_DIR) + "/configs/disco.yaml"; }
+
+}  // namespace disco

@@ -1,0 +1,77 @@
+// disco — the elastic mode of an MPCC (paper Section IV, eqs. 3-4), as an Nlp.
+//
+// Given the MPCC  min f(z)  s.t.  c_lo <= c(z) <= c_hi,  z_lo <= z <= z_hi,
+// 0 <= G_i(z) _|_ H_i(z) >= 0, the elastic NLP is built in two steps.
+//
+// 1. Lifting. Every side that is a row c_r(z) gets a slack s_r >= 0 and the
+//    row becomes the equality c_r(z) - s_r = 0 (the row's own bounds move to
+//    s_r). Every pair is then between two variables u_i, w_i >= 0, and the
+//    products below are bilinear: their derivatives are exact and cheap.
+//
+// 2. Elastic complementarity, one of:
+//    * kLumped (the paper):  sum_i u_i w_i <= eps,  eps >= 0,
+//                            objective f(z) + zeta * eps;
+//    * kPerPair:             objective f(z) + zeta * sum_i u_i w_i.
+//      This is the per-pair elastic mode u_i w_i <= eps_i with penalty
+//      zeta * sum_i eps_i, with each eps_i eliminated: since u_i, w_i >= 0 the
+//      optimal eps_i is exactly u_i w_i, so the two have the same solutions
+//      and this form needs no extra variables or rows.
+//
+// Variables: [z (n) | s (one per row side) | eps (kLumped only)].
+// Rows:      [c(z), side rows minus their slack (m) | the lumped row (kLumped)].
+// The MPCC's Jacobian and Hessian entries come first, in the MPCC's order, so
+// its values are written in place into the head of each array.
+#pragma once
+
+#include <vector>
+
+#include "core/nlp/mpcc.h"
+
+namespace disco {
+
+enum class ElasticFormulation { kLumped, kPerPair };
+
+class ElasticNlp : public Nlp {
+ public:
+  ElasticNlp(const Mpcc& mpcc, ElasticFormulation formulation, double zeta);
+
+  void set_zeta(double zeta) { zeta_ = zeta; }
+  double zeta() const { return zeta_; }
+  ElasticFormulation formulation() const { return formulation_; }
+  const Mpcc& mpcc() const { return mpcc_; }
+
+  // The elastic point for an MPCC point: slacks = side rows, eps = sum u w.
+  Vector lift(const ConstVectorRef& z) const;
+  // Elastic variable index of each pair's sides (u_i, w_i).
+  int u(int i) const { return u_[i]; }
+  int w(int i) const { return w_[i]; }
+  // Index of eps, or -1 (kPerPair).
+  int eps_index() const { return eps_; }
+
+ private:
+  bool do_objective(const ConstVectorRef& x, double& f) const override;
+  bool do_gradient(const ConstVectorRef& x, VectorRef grad) const override;
+  bool do_constraints(const ConstVectorRef& x, VectorRef c) const override;
+  bool do_jacobian(const ConstVectorRef& x, VectorRef values) const override;
+  bool do_hessian(const ConstVectorRef& x, double sigma, const ConstVectorRef& lambda,
+                  VectorRef values) const override;
+
+  double product_sum(const ConstVectorRef& x) const;
+
+  const Mpcc& mpcc_;
+  ElasticFormulation formulation_;
+  double zeta_;
+  int n_ = 0, m_ = 0;                  // MPCC sizes
+  std::vector<int> side_row_, slack_;  // row sides and their slack variables
+  std::vector<int> u_, w_;             // per pair
+  int eps_ = -1;
+  // Derivatives of P(x) = sum_i u_i w_i: dP/dx_k = sum of x at `partner`
+  // over the entries of k (CSR by gradient entry `grad_var_`).
+  std::vector<int> grad_var_, grad_begin_, grad_partner_;
+  // d2P: entry e of the Hessian gets `weight * hess_mult_` per pair listed.
+  std::vector<int> pair_hess_entry_;   // per pair: Hessian entry of (u_i, w_i)
+  std::vector<double> pair_hess_mult_; // 1, or 2 when u_i == w_i
+  int mpcc_jac_nnz_ = 0, mpcc_hess_nnz_ = 0;
+};
+
+}  // namespace disco

@@ -1,0 +1,153 @@
+#include "core/elastic/elastic_solver.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "core/util/check.h"
+#include "core/util/numbers.h"
+
+namespace disco {
+
+std::string to_string(MpccStatus s) {
+  switch (s) {
+    case MpccStatus::kSolved: return "solved";
+    case MpccStatus::kElasticNotTight: return "elastic_not_tight";
+    case MpccStatus::kInfeasible: return "infeasible";
+    case MpccStatus::kFailed: return "failed";
+  }
+  return "failed";
+}
+
+Certificate certify(const Mpcc& mpcc, const ConstVectorRef& z) {
+  Certificate cert;
+  Vector c(mpcc.num_constraints());
+  if (!mpcc.constraints(z, c) || !z.allFinite()) {
+    cert.max_violation = cert.max_complementarity = cert.complementarity_product = kInf;
+    return cert;
+  }
+  auto excess = [](double v, double lo, double hi) { return std::max({lo - v, v - hi, 0.0}); };
+  for (int k = 0; k < z.size(); ++k)
+    cert.max_violation = std::max(
+        cert.max_violation, excess(z[k], mpcc.variable_lower()[k], mpcc.variable_upper()[k]));
+  for (int r = 0; r < c.size(); ++r)
+    cert.max_violation = std::max(
+        cert.max_violation, excess(c[r], mpcc.constraint_lower()[r], mpcc.constraint_upper()[r]));
+  for (const auto& p : mpcc.complementarity_pairs()) {
+    const double g = side_value(p.g, z, c), h = side_value(p.h, z, c);
+    cert.max_complementarity = std::max(cert.max_complementarity, std::abs(std::min(g, h)));
+    cert.complementarity_product += g * h;
+  }
+  return cert;
+}
+
+MpccResult ElasticSolver::solve(const Mpcc& mpcc, const ConstVectorRef& z0) {
+  ElasticNlp shape(mpcc, settings_.formulation, settings_.zeta);
+  NlpPoint start;
+  start.z = shape.lift(z0);
+  return run(mpcc, std::move(start), settings_.zeta);
+}
+
+MpccResult ElasticSolver::solve(const Mpcc& mpcc, const MpccResult& warm) {
+  return run(mpcc, warm.elastic_point, warm.zeta > 0 ? warm.zeta : settings_.zeta);
+}
+
+MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta) {
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  auto remaining = [&]() -> double {
+    if (settings_.wall_limit_s <= 0) return 0.0;
+    const double left =
+        settings_.wall_limit_s - std::chrono::duration<double>(Clock::now() - t0).count();
+    return std::max(left, 1e-3);
+  };
+  const int n = mpcc.num_variables();
+  ElasticNlp nlp(mpcc, settings_.formulation, zeta);
+  DISCO_CHECK(start.z.size() == nlp.num_variables(), "warm start of another shape");
+
+  MpccResult out;
+  auto record = [&](const NlpResult& r) {
+    out.ipopt_status = r.ipopt_status;
+    out.nlp_solves += 1;
+    out.iterations += r.iterations;
+    out.elastic_point = r.point;
+    out.z = r.point.z.head(n);
+    out.certificate = certify(mpcc, out.z);
+    if (!mpcc.objective(out.z, out.objective)) out.objective = kInf;
+  };
+
+  // 1-2. Elastic solves, raising zeta until complementarity is tight.
+  bool converged = false;
+  double previous_residual = -1.0;
+  while (true) {
+    nlp.set_zeta(zeta);
+    const NlpResult r = ipopt_.solve(nlp, start, remaining());
+    record(r);
+    out.zeta = zeta;
+    if (r.ipopt_status == 2) {
+      out.status = MpccStatus::kInfeasible;
+      break;
+    }
+    if (!r.converged()) {
+      out.status = MpccStatus::kFailed;
+      break;
+    }
+    converged = true;
+    if (out.certificate.max_complementarity <= settings_.complementarity_tol) {
+      // Tight; a violation above tolerance (Ipopt's scaled tolerance met,
+      // ours not) is an honest failure unless polishing repairs it.
+      out.status = out.certificate.within(settings_.violation_tol, settings_.complementarity_tol)
+                       ? MpccStatus::kSolved
+                       : MpccStatus::kFailed;
+      break;
+    }
+    const bool stalled =
+        previous_residual >= 0 && std::abs(out.certificate.max_complementarity - previous_residual) <=
+                                      settings_.stall_change * previous_residual;
+    previous_residual = out.certificate.max_complementarity;
+    if (stalled || zeta * settings_.zeta_factor > settings_.zeta_max) {
+      out.status = MpccStatus::kElasticNotTight;
+      break;
+    }
+    zeta *= settings_.zeta_factor;
+    start = r.point;
+  }
+
+  // 3. Polish: fix the smaller side of every pair to zero and re-solve.
+  // Worth it when the elastic solve converged near complementarity.
+  const bool worth_polishing = converged && out.certificate.max_complementarity < 1e-2;
+  if (settings_.polish && worth_polishing &&
+      (settings_.wall_limit_s <= 0 ||
+       std::chrono::duration<double>(Clock::now() - t0).count() < settings_.wall_limit_s)) {
+    const MpccResult before = out;
+    const Vector& x = out.elastic_point.z;
+    for (int i = 0; i < mpcc.num_complementarity_pairs(); ++i) {
+      const int fix = x[nlp.u(i)] <= x[nlp.w(i)] ? nlp.u(i) : nlp.w(i);
+      nlp.set_variable_bounds(fix, 0.0, 0.0);
+    }
+    NlpPoint polish_start = out.elastic_point;
+    for (int k = 0; k < nlp.num_variables(); ++k)  // start inside the new bounds
+      polish_start.z[k] = std::clamp(polish_start.z[k], nlp.variable_lower()[k],
+                                     nlp.variable_upper()[k]);
+    const NlpResult r = ipopt_.solve(nlp, polish_start, remaining());
+    record(r);
+    if (r.converged() &&
+        out.certificate.within(settings_.violation_tol, settings_.complementarity_tol)) {
+      out.status = MpccStatus::kSolved;
+      out.polished = true;
+      // Warm starts continue from the elastic solve's primal-dual point: Ipopt
+      // returns no multipliers for the sides polish fixed (make_parameter), so
+      // the polished point starts later elastic solves no better than cold.
+      out.elastic_point = before.elastic_point;
+    } else {
+      const int solves = out.nlp_solves, iters = out.iterations;
+      out = before;  // the elastic answer stands
+      out.nlp_solves = solves;
+      out.iterations = iters;
+    }
+  }
+  out.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace disco

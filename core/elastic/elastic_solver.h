@@ -1,0 +1,95 @@
+// disco — solving an MPCC through its elastic mode, with a certificate.
+//
+// solve() runs, from a start point (or a warm start):
+//   1. the elastic NLP (core/elastic/elastic_nlp.h) with penalty zeta;
+//   2. if Ipopt converged but complementarity is not yet tight
+//      (max_i |min(G_i, H_i)| > complementarity_tol), zeta *= zeta_factor and
+//      the elastic NLP is solved again, warm-started, while zeta <= zeta_max;
+//      past the limit, or when a raise changes the residual by less than
+//      stall_change (relative), the result is kElasticNotTight, never
+//      "solved". The exact penalty works as a threshold (the residual stays
+//      put, then drops to zero once zeta passes the MPCC's multipliers), so
+//      only a residual that does not move at all signals that raising cannot
+//      help: that is what an active bound T_f <= B below the MPCC's optimum
+//      gives, since eps is then already minimal over {T_f <= B};
+//   3. polish (optional, on by default): the branch NLP in which, for every
+//      pair, the smaller side at the elastic solution is fixed to zero, solved
+//      warm-started. Complementarity then holds exactly up to the constraint
+//      tolerance. If the branch NLP fails, the elastic answer stands.
+// Every answer is certified on the MPCC itself (certify()); a result is
+// kSolved only when Ipopt converged AND the certificate meets both
+// tolerances.
+#pragma once
+
+#include <string>
+
+#include "core/elastic/elastic_nlp.h"
+#include "core/ipopt/ipopt_solver.h"
+
+namespace disco {
+
+enum class MpccStatus {
+  kSolved,           // converged, certificate within tolerances
+  kElasticNotTight,  // converged, but complementarity not tight at zeta_max
+  kInfeasible,       // Ipopt found the (elastic) problem locally infeasible
+  kFailed,           // Ipopt stopped otherwise; see ipopt_status
+};
+std::string to_string(MpccStatus s);
+
+struct ElasticSettings {
+  ElasticFormulation formulation = ElasticFormulation::kLumped;
+  double zeta = 10.0;
+  double zeta_factor = 10.0;
+  double zeta_max = 1e6;
+  double stall_change = 1e-3;  // < 0: never stop early
+  double complementarity_tol = 1e-6;
+  double violation_tol = 1e-6;
+  bool polish = true;
+  double wall_limit_s = 0.0;  // per solve() call; 0 = none
+};
+
+// How well z satisfies the MPCC, in the MPCC's own units.
+struct Certificate {
+  double max_violation = 0.0;        // bounds and constraint rows, max over all
+  double max_complementarity = 0.0;  // max_i |min(G_i, H_i)|
+  double complementarity_product = 0.0;  // sum_i G_i H_i
+  bool within(double violation_tol, double complementarity_tol) const {
+    return max_violation <= violation_tol && max_complementarity <= complementarity_tol;
+  }
+};
+Certificate certify(const Mpcc& mpcc, const ConstVectorRef& z);
+
+struct MpccResult {
+  MpccStatus status = MpccStatus::kFailed;
+  int ipopt_status = 0;    // of the last NLP solve
+  Vector z;                // MPCC variables
+  double objective = 0.0;  // f(z), without the elastic penalty
+  Certificate certificate;
+  int nlp_solves = 0;
+  int iterations = 0;
+  double seconds = 0.0;
+  double zeta = 0.0;       // penalty at the end
+  bool polished = false;
+  NlpPoint elastic_point;  // elastic primal-dual point (before polish), for warm starts
+  bool solved() const { return status == MpccStatus::kSolved; }
+};
+
+class ElasticSolver {
+ public:
+  ElasticSolver(IpoptSolver& ipopt, ElasticSettings settings)
+      : ipopt_(ipopt), settings_(settings) {}
+  const ElasticSettings& settings() const { return settings_; }
+
+  // From an MPCC point z0.
+  MpccResult solve(const Mpcc& mpcc, const ConstVectorRef& z0);
+  // From an earlier result on an MPCC of the same structure (bounds may
+  // differ): primal, duals and zeta are reused.
+  MpccResult solve(const Mpcc& mpcc, const MpccResult& warm);
+
+ private:
+  MpccResult run(const Mpcc& mpcc, NlpPoint start, double zeta);
+  IpoptSolver& ipopt_;
+  ElasticSettings settings_;
+};
+
+}  // namespace disco

@@ -1,0 +1,219 @@
+#include "core/ipopt/ipopt_solver.h"
+
+#include <IpIpoptApplication.hpp>
+#include <IpTNLP.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+
+#include "core/util/check.h"
+#include "core/util/errors.h"
+
+namespace disco {
+namespace {
+
+using Ipopt::Index;
+using Ipopt::Number;
+using Clock = std::chrono::steady_clock;
+
+// The TNLP adapter (shape of Ipopt's hs071 example): forwards every callback
+// to the Nlp's checked public evaluation, which already turns exceptions and
+// non-finite values into `false`.
+class TnlpAdapter : public Ipopt::TNLP {
+ public:
+  TnlpAdapter(const Nlp& nlp, const NlpPoint& start, NlpResult& out, Clock::time_point deadline,
+              bool has_deadline)
+      : nlp_(nlp), start_(start), out_(out), deadline_(deadline), has_deadline_(has_deadline) {}
+
+  bool get_nlp_info(Index& n, Index& m, Index& nnz_jac, Index& nnz_h,
+                    IndexStyleEnum& style) override {
+    n = nlp_.num_variables();
+    m = nlp_.num_constraints();
+    nnz_jac = nlp_.jacobian_pattern().size();
+    nnz_h = nlp_.hessian_pattern().size();
+    style = C_STYLE;
+    return true;
+  }
+
+  bool get_bounds_info(Index n, Number* x_l, Number* x_u, Index m, Number* g_l,
+                       Number* g_u) override {
+    Eigen::Map<Vector>(x_l, n) = nlp_.variable_lower();
+    Eigen::Map<Vector>(x_u, n) = nlp_.variable_upper();
+    Eigen::Map<Vector>(g_l, m) = nlp_.constraint_lower();
+    Eigen::Map<Vector>(g_u, m) = nlp_.constraint_upper();
+    return true;
+  }
+
+  bool get_starting_point(Index n, bool init_x, Number* x, bool init_z, Number* z_L, Number* z_U,
+                          Index m, bool init_lambda, Number* lambda) override {
+    if (init_x) Eigen::Map<Vector>(x, n) = start_.z;
+    if (init_z || init_lambda) {
+      if (!start_.has_duals()) return false;
+      if (init_z) {
+        Eigen::Map<Vector>(z_L, n) = start_.z_lo;
+        Eigen::Map<Vector>(z_U, n) = start_.z_hi;
+      }
+      if (init_lambda) Eigen::Map<Vector>(lambda, m) = start_.lambda;
+    }
+    return true;
+  }
+
+  bool eval_f(Index n, const Number* x, bool, Number& f) override {
+    return nlp_.objective(Eigen::Map<const Vector>(x, n), f);
+  }
+  bool eval_grad_f(Index n, const Number* x, bool, Number* g) override {
+    Eigen::Map<Vector> out(g, n);
+    return nlp_.gradient(Eigen::Map<const Vector>(x, n), out);
+  }
+  bool eval_g(Index n, const Number* x, bool, Index m, Number* g) override {
+    Eigen::Map<Vector> out(g, m);
+    return nlp_.constraints(Eigen::Map<const Vector>(x, n), out);
+  }
+  bool eval_jac_g(Index n, const Number* x, bool, Index, Index nele, Index* irow, Index* jcol,
+                  Number* values) override {
+    if (values == nullptr) {
+      const auto& p = nlp_.jacobian_pattern();
+      std::copy(p.rows.begin(), p.rows.end(), irow);
+      std::copy(p.cols.begin(), p.cols.end(), jcol);
+      return true;
+    }
+    Eigen::Map<Vector> out(values, nele);
+    return nlp_.jacobian(Eigen::Map<const Vector>(x, n), out);
+  }
+  bool eval_h(Index n, const Number* x, bool, Number obj_factor, Index m, const Number* lambda,
+              bool, Index nele, Index* irow, Index* jcol, Number* values) override {
+    if (values == nullptr) {
+      const auto& p = nlp_.hessian_pattern();
+      std::copy(p.rows.begin(), p.rows.end(), irow);
+      std::copy(p.cols.begin(), p.cols.end(), jcol);
+      return true;
+    }
+    Eigen::Map<Vector> out(values, nele);
+    return nlp_.hessian(Eigen::Map<const Vector>(x, n), obj_factor,
+                        Eigen::Map<const Vector>(lambda, m), out);
+  }
+
+  bool intermediate_callback(Ipopt::AlgorithmMode, Index iter, Number, Number, Number, Number,
+                             Number, Number, Number, Number, Index,
+                             const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
+    out_.iterations = iter;
+    return !(has_deadline_ && Clock::now() > deadline_);
+  }
+
+  void finalize_solution(Ipopt::SolverReturn, Index n, const Number* x, const Number* z_L,
+                         const Number* z_U, Index m, const Number*, const Number* lambda,
+                         Number obj_value, const Ipopt::IpoptData*,
+                         Ipopt::IpoptCalculatedQuantities*) override {
+    out_.point.z = Eigen::Map<const Vector>(x, n);
+    out_.point.z_lo = Eigen::Map<const Vector>(z_L, n);
+    out_.point.z_hi = Eigen::Map<const Vector>(z_U, n);
+    out_.point.lambda = Eigen::Map<const Vector>(lambda, m);
+    out_.objective = obj_value;
+  }
+
+ private:
+  const Nlp& nlp_;
+  const NlpPoint& start_;
+  NlpResult& out_;
+  Clock::time_point deadline_;
+  bool has_deadline_;
+};
+
+double parse_number(const IpoptOption& o, bool integer) {
+  char* end = nullptr;
+  const double v = std::strtod(o.value.c_str(), &end);
+  const bool integral = std::isfinite(v) && std::abs(v) <= 2147483647.0 && v == std::floor(v);
+  if (end == o.value.c_str() || *end != '\0' || !std::isfinite(v) || (integer && !integral))
+    throw InputError(o.where + ": key 'ipopt." + o.name + "': expected " +
+                     (integer ? "an integer" : "a number") + ", got '" + o.value + "'");
+  return v;
+}
+
+}  // namespace
+
+std::string ipopt_status_name(int status) {
+  switch (status) {
+    case 0: return "Solve_Succeeded";
+    case 1: return "Solved_To_Acceptable_Level";
+    case 2: return "Infeasible_Problem_Detected";
+    case 3: return "Search_Direction_Becomes_Too_Small";
+    case 4: return "Diverging_Iterates";
+    case 5: return "User_Requested_Stop";
+    case 6: return "Feasible_Point_Found";
+    case -1: return "Maximum_Iterations_Exceeded";
+    case -2: return "Restoration_Failed";
+    case -3: return "Error_In_Step_Computation";
+    case -4: return "Maximum_CpuTime_Exceeded";
+    case -10: return "Not_Enough_Degrees_Of_Freedom";
+    case -11: return "Invalid_Problem_Definition";
+    case -12: return "Invalid_Option";
+    case -13: return "Invalid_Number_Detected";
+    case -100: return "Unrecoverable_Exception";
+    case -101: return "NonIpopt_Exception_Thrown";
+    case -102: return "Insufficient_Memory";
+    default: return "Internal_Error";
+  }
+}
+
+struct IpoptSolver::Application {
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> app = new Ipopt::IpoptApplication();
+};
+
+IpoptSolver::IpoptSolver(const std::vector<IpoptOption>& options)
+    : app_(std::make_unique<Application>()) {
+  auto& app = app_->app;
+  // Never read an "ipopt.opt" lying in the working directory: options come
+  // only from disco's settings.
+  if (app->Initialize("") != Ipopt::Solve_Succeeded)
+    throw std::runtime_error("Ipopt failed to initialize");
+  auto registry = app->RegOptions();
+  auto list = app->Options();
+  for (const auto& o : options) {
+    auto reg = registry->GetOption(o.name);
+    if (!Ipopt::IsValid(reg))
+      throw InputError(o.where + ": key 'ipopt." + o.name + "': Ipopt has no such option");
+    bool ok = false;
+    switch (reg->Type()) {
+      case Ipopt::OT_Number: ok = list->SetNumericValue(o.name, parse_number(o, false)); break;
+      case Ipopt::OT_Integer:
+        ok = list->SetIntegerValue(o.name, static_cast<Index>(parse_number(o, true)));
+        break;
+      default: ok = list->SetStringValue(o.name, o.value); break;
+    }
+    if (!ok)
+      throw InputError(o.where + ": key 'ipopt." + o.name + "': Ipopt rejects the value '" +
+                       o.value + "'");
+  }
+}
+
+IpoptSolver::~IpoptSolver() = default;
+
+NlpResult IpoptSolver::solve(const Nlp& nlp, const NlpPoint& start, double wall_limit_s) {
+  DISCO_CHECK(start.z.size() == nlp.num_variables(), "start point has the wrong size");
+  if (start.has_duals()) {
+    DISCO_CHECK(start.lambda.size() == nlp.num_constraints(), "warm-start duals: wrong size");
+    DISCO_CHECK(start.z_lo.size() == nlp.num_variables(), "warm-start bound duals: wrong size");
+  }
+  NlpResult out;
+  const auto t0 = Clock::now();
+  const auto deadline = t0 + std::chrono::duration_cast<Clock::duration>(
+                                 std::chrono::duration<double>(wall_limit_s));
+  auto& app = app_->app;
+  app->Options()->SetStringValue("warm_start_init_point", start.has_duals() ? "yes" : "no");
+  Ipopt::SmartPtr<Ipopt::TNLP> tnlp =
+      new TnlpAdapter(nlp, start, out, deadline, wall_limit_s > 0.0);
+  out.ipopt_status = static_cast<int>(app->OptimizeTNLP(tnlp));
+  out.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  if (out.point.z.size() != nlp.num_variables()) {  // Ipopt gave up before finalize
+    out.point = start;
+    if (!out.point.has_duals()) {
+      out.point.lambda = Vector::Zero(nlp.num_constraints());
+      out.point.z_lo = Vector::Zero(nlp.num_variables());
+      out.point.z_hi = Vector::Zero(nlp.num_variables());
+    }
+  }
+  return out;
+}
+
+}  // namespace disco

@@ -1,0 +1,117 @@
+#include "core/model/layout.h"
+
+#include <cmath>
+
+#include "core/util/check.h"
+#include "core/util/numbers.h"
+
+namespace disco {
+
+Layout::Layout(const Scene& s, PolynomialProgram& P) : scene_(s) {
+  const int N = s.steps;
+  const int nr = static_cast<int>(s.robots.size());
+  const int np = static_cast<int>(s.pairs.size());
+  robots_.resize(nr);
+  pairs_.resize(np);
+  momentum_.assign(nr, std::vector<std::array<int, 3>>(N, {-1, -1, -1}));
+
+  t_f_ = P.add_variable(0.0, kInf, 1.0);
+  for (int i = 0; i < nr; ++i) {
+    robots_[i].state.assign(N + 1, {-1, -1, -1, -1, -1, -1});
+    robots_[i].force.resize(N);
+    if (s.robots[i].mu > 0) robots_[i].beta.resize(N);
+  }
+  for (int p = 0; p < np; ++p) pairs_[p].rho.assign(N + 1, -1);
+
+  // Unknowns in time order (interval t, then the state it leads to), which
+  // keeps the KKT matrix banded in time.
+  for (int t = 0; t < N; ++t) {
+    for (int i = 0; i < nr; ++i) {
+      const Robot& rb = s.robots[i];
+      auto& v = robots_[i];
+      for (int a = 0; a < rb.force_dims; ++a) v.force[t].push_back(P.add_variable(-kInf, kInf));
+      if (rb.mu > 0) {
+        for (int k = 0; k < rb.friction_edges; ++k) v.beta[t].push_back(P.add_variable(0, kInf));
+        v.gamma.push_back(P.add_variable(0, kInf));
+      }
+    }
+    for (int p = 0; p < np; ++p) {
+      if (s.pairs[p].mode != PairMode::kContact) continue;
+      auto& v = pairs_[p];
+      v.cn.push_back(P.add_variable(0, kInf));
+      v.a1.push_back(P.add_variable(0, kInf));
+      v.a2.push_back(P.add_variable(0, kInf));
+      v.gamma.push_back(P.add_variable(0, kInf));
+    }
+    for (int i = 0; i < nr; ++i)
+      for (int c = 0; c < kStateSize; ++c)
+        robots_[i].state[t + 1][c] = P.add_variable(-kInf, kInf);
+    for (int p = 0; p < np; ++p) pairs_[p].rho[t + 1] = P.add_variable(-kInf, kInf);
+  }
+}
+
+int Layout::state_index(int robot, int t, int component) const {
+  return t == 0 ? -1 : robots_[robot].state[t][component];
+}
+
+Affine Layout::state(int robot, int t, int component) const {
+  if (t == 0) return Affine(scene_.robots[robot].start[component]);
+  return Affine::variable(robots_[robot].state[t][component]);
+}
+
+Affine Layout::force(int robot, int t, int axis) const {
+  const Robot& rb = scene_.robots[robot];
+  const auto& f = robots_[robot].force[t];
+  if (rb.force_dims == 2) return Affine::variable(f[axis]);
+  return Affine::variable(f[0], rb.force_axis[axis]);
+}
+
+Affine Layout::beta(int robot, int t, int k) const {
+  return Affine::variable(beta_index(robot, t, k));
+}
+Affine Layout::floor_gamma(int robot, int t) const {
+  return Affine::variable(floor_gamma_index(robot, t));
+}
+int Layout::beta_index(int robot, int t, int k) const {
+  DISCO_CHECK(has_floor_friction(robot), "beta of a robot without floor friction");
+  return robots_[robot].beta[t][k];
+}
+int Layout::floor_gamma_index(int robot, int t) const {
+  DISCO_CHECK(has_floor_friction(robot), "gamma of a robot without floor friction");
+  return robots_[robot].gamma[t];
+}
+
+int Layout::momentum_row(int robot, int t, int axis) const {
+  const int r = momentum_[robot][t][axis];
+  DISCO_CHECK(r >= 0, "momentum rows are created by add_dynamics, before any impulse");
+  return r;
+}
+
+int Layout::gap_index(int pair, int t) const { return t == 0 ? -1 : pairs_[pair].rho[t]; }
+
+Affine Layout::gap(int pair, int t) const {
+  if (t == 0) {
+    const Pair& p = scene_.pairs[pair];
+    const auto& a = scene_.robots[p.i].start;
+    const auto& b = scene_.robots[p.j].start;
+    return Affine(std::hypot(b[kX] - a[kX], b[kY] - a[kY]) - scene_.robots[p.i].radius -
+                  scene_.robots[p.j].radius);
+  }
+  return Affine::variable(pairs_[pair].rho[t]);
+}
+
+Affine Layout::centre_distance(int pair, int t) const {
+  const Pair& p = scene_.pairs[pair];
+  return gap(pair, t) + Affine(scene_.robots[p.i].radius + scene_.robots[p.j].radius);
+}
+
+Affine Layout::normal(int pair, int t, int axis) const {
+  const Pair& p = scene_.pairs[pair];
+  return state(p.j, t, axis) - state(p.i, t, axis);
+}
+
+Affine Layout::tangent(int pair, int t, int axis) const {
+  return axis == 0 ? -normal(pair, t, 1) : normal(pair, t, 0);
+}
+
+}  // namespace disco

@@ -1,0 +1,65 @@
+#include "core/model/lower_bound.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "core/util/numbers.h"
+
+namespace disco {
+
+double straight_move_time(double distance, double a1, double a2, bool stop_at_end) {
+  if (distance <= 0) return 0.0;
+  if (a1 <= 0) return kInf;
+  if (!stop_at_end) return std::sqrt(2.0 * distance / a1);
+  const double v_peak = std::sqrt(2.0 * distance * a1 * a2 / (a1 + a2));
+  return v_peak / a1 + v_peak / a2;
+}
+
+bool straight_move_is_optimal(const Robot& rb, double ux, double uy) {
+  constexpr double kTol = 1e-9;
+  if (rb.force_dims == 1)
+    return std::abs(std::abs(rb.force_axis[0] * ux + rb.force_axis[1] * uy) - 1.0) < kTol;
+  return std::abs(std::abs(ux) - std::abs(uy)) < kTol;
+}
+
+std::optional<double> robot_lower_bound(const Robot& rb, double gravity) {
+  const auto& s = rb.start;
+  if (s[kVx] != 0.0 || s[kVy] != 0.0) return std::nullopt;
+  const auto& lo = rb.target.lower;
+  const auto& hi = rb.target.upper;
+  const bool rest = lo[kVx] == 0.0 && hi[kVx] == 0.0 && lo[kVy] == 0.0 && hi[kVy] == 0.0;
+  const bool free = lo[kVx] == -kInf && hi[kVx] == kInf && lo[kVy] == -kInf && hi[kVy] == kInf;
+  if (!rest && !free) return std::nullopt;
+
+  const double dx = std::clamp(s[kX], lo[kX], hi[kX]) - s[kX];
+  const double dy = std::clamp(s[kY], lo[kY], hi[kY]) - s[kY];
+  const double d = std::hypot(dx, dy);
+  if (d == 0.0) return 0.0;
+  const double ux = dx / d, uy = dy / d;
+  const double push = rb.force_dims == 2
+                          ? rb.force_max * (std::abs(ux) + std::abs(uy))
+                          : rb.force_max * std::abs(rb.force_axis[0] * ux + rb.force_axis[1] * uy);
+  double support = -1.0;  // max_k d_k . u
+  for (int k = 0; k < rb.friction_edges; ++k) {
+    const double angle = 2.0 * std::numbers::pi * k / rb.friction_edges;
+    support = std::max(support, std::cos(angle) * ux + std::sin(angle) * uy);
+  }
+  const double friction = rb.mu * rb.mass * gravity * support;
+  const double a2 = (push + friction) / rb.mass;
+  if (straight_move_is_optimal(rb, ux, uy))
+    return straight_move_time(d, (push - friction) / rb.mass, a2, rest);
+  return straight_move_time(d, push / rb.mass, a2, rest);  // provable relaxation
+}
+
+std::optional<double> scene_lower_bound(const Scene& scene) {
+  double best = 0.0;
+  for (const auto& rb : scene.robots) {
+    const auto b = robot_lower_bound(rb, scene.gravity);
+    if (!b) return std::nullopt;
+    best = std::max(best, *b);
+  }
+  return best;
+}
+
+}  // namespace disco

@@ -1,0 +1,151 @@
+#include "core/model/robot_problem.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "core/model/avoidance.h"
+#include "core/model/bounds.h"
+#include "core/model/contact_friction.h"
+#include "core/model/dynamics.h"
+#include "core/model/floor_friction.h"
+#include "core/model/gap.h"
+#include "core/model/kinematics.h"
+#include "core/model/lower_bound.h"
+#include "core/model/nonpenetration.h"
+#include "core/util/numbers.h"
+
+namespace disco {
+namespace {
+
+// The smallest horizon allowed, in model time units: keeps h > 0.
+constexpr double kHorizonMin = 1e-3;
+
+}  // namespace
+
+const std::vector<Family>& all_families() {
+  static const std::vector<Family> all = {
+      Family::kKinematics, Family::kDynamics,        Family::kFloorFriction, Family::kGap,
+      Family::kNonpenetration, Family::kContactFriction, Family::kAvoidance, Family::kBounds};
+  return all;
+}
+
+RobotProblem::RobotProblem(const Scene& scene, const std::vector<Family>& families)
+    : scene_(scene),
+      units_(choose_units(scene)),
+      program_(),
+      layout_(to_model_units(scene, units_), program_) {
+  auto has = [&](Family f) { return std::find(families.begin(), families.end(), f) != families.end(); };
+  // Dynamics first: the force families add impulses to its rows.
+  add_dynamics(layout_, program_);
+  if (has(Family::kKinematics)) add_kinematics(layout_, program_);
+  if (has(Family::kFloorFriction)) add_floor_friction(layout_, program_);
+  if (has(Family::kGap)) add_gap(layout_, program_);
+  if (has(Family::kNonpenetration)) add_nonpenetration(layout_, program_);
+  if (has(Family::kContactFriction)) add_contact_friction(layout_, program_);
+  if (has(Family::kAvoidance)) add_avoidance(layout_, program_);
+  if (has(Family::kBounds)) add_bounds(layout_, program_, kHorizonMin, kInf);
+  program_.add(PolynomialProgram::kObjective, 1.0, layout_.horizon());  // minimize T_f
+  program_.finalize();
+}
+
+ModelSize RobotProblem::size() const {
+  return {program_.num_variables(), program_.num_constraints(),
+          program_.num_complementarity_pairs()};
+}
+
+void RobotProblem::fix_horizon(double seconds) {
+  const double T = seconds / units_.time;
+  program_.set_variable_bounds(layout_.horizon_index(), T, T);
+}
+
+void RobotProblem::limit_horizon(double max_seconds) {
+  program_.set_variable_bounds(layout_.horizon_index(), kHorizonMin,
+                               std::max(kHorizonMin, max_seconds / units_.time));
+}
+
+double RobotProblem::horizon(const ConstVectorRef& z) const {
+  return z[layout_.horizon_index()] * units_.time;
+}
+
+std::optional<double> RobotProblem::lower_bound() const { return scene_lower_bound(scene_); }
+
+Vector RobotProblem::straight_line_guess(double seconds) const {
+  const Scene& s = layout_.scene();  // model units
+  const int N = s.steps, nr = static_cast<int>(s.robots.size());
+  const double T = seconds / units_.time, h = T / N;
+  Vector z = Vector::Zero(program_.num_variables());
+  z[layout_.horizon_index()] = T;
+
+  // States: t = 0 is the start; positions follow a smoothstep.
+  std::vector<std::vector<State>> q(nr, std::vector<State>(N + 1));
+  for (int i = 0; i < nr; ++i) {
+    const Robot& rb = s.robots[i];
+    State goal = rb.start;
+    for (int c : {kX, kY, kPhi}) goal[c] = std::clamp(rb.start[c], rb.target.lower[c], rb.target.upper[c]);
+    q[i][0] = rb.start;
+    for (int t = 1; t <= N; ++t) {
+      const double tau = static_cast<double>(t) / N, w = tau * tau * (3.0 - 2.0 * tau);
+      for (int c : {kX, kY, kPhi}) q[i][t][c] = rb.start[c] + w * (goal[c] - rb.start[c]);
+      q[i][t][kVx] = (q[i][t][kX] - q[i][t - 1][kX]) / h;
+      q[i][t][kVy] = (q[i][t][kY] - q[i][t - 1][kY]) / h;
+      q[i][t][kOmega] = (q[i][t][kPhi] - q[i][t - 1][kPhi]) / h;
+      for (int c = 0; c < kStateSize; ++c) z[layout_.state_index(i, t, c)] = q[i][t][c];
+    }
+  }
+  // Floor friction opposing v^{t+1}, and the force that balances momentum.
+  for (int i = 0; i < nr; ++i) {
+    const Robot& rb = s.robots[i];
+    for (int t = 0; t < N; ++t) {
+      const double vx = q[i][t + 1][kVx], vy = q[i][t + 1][kVy];
+      double friction[2] = {0.0, 0.0};
+      if (layout_.has_floor_friction(i)) {
+        int best = 0;
+        double lowest = kInf;
+        for (int k = 0; k < rb.friction_edges; ++k) {
+          const double a = 2.0 * std::numbers::pi * k / rb.friction_edges;
+          const double dv = std::cos(a) * vx + std::sin(a) * vy;
+          if (dv < lowest) lowest = dv, best = k;
+        }
+        const bool moving = std::hypot(vx, vy) > 1e-12;
+        const double beta = moving ? rb.mu * rb.mass * s.gravity : 0.0;
+        const double a = 2.0 * std::numbers::pi * best / rb.friction_edges;
+        z[layout_.beta_index(i, t, best)] = beta;
+        z[layout_.floor_gamma_index(i, t)] = std::max(0.0, -lowest);
+        friction[0] = beta * std::cos(a);
+        friction[1] = beta * std::sin(a);
+      }
+      double f[2];
+      for (int a = 0; a < 2; ++a) {
+        const int vel = a == 0 ? kVx : kVy;
+        f[a] = rb.mass * (q[i][t + 1][vel] - q[i][t][vel]) / h - friction[a];
+      }
+      const auto& idx = layout_.force_indices(i, t);
+      if (rb.force_dims == 2) {
+        for (int a = 0; a < 2; ++a) z[idx[a]] = std::clamp(f[a], -rb.force_max, rb.force_max);
+      } else {
+        const double along = f[0] * rb.force_axis[0] + f[1] * rb.force_axis[1];
+        z[idx[0]] = std::clamp(along, -rb.force_max, rb.force_max);
+      }
+    }
+  }
+  // Gaps from positions; contact multipliers: gamma = |v_T| (others zero).
+  for (int p = 0; p < static_cast<int>(s.pairs.size()); ++p) {
+    const Pair& pr = s.pairs[p];
+    const double R = s.robots[pr.i].radius + s.robots[pr.j].radius;
+    for (int t = 1; t <= N; ++t) {
+      const double nx = q[pr.j][t][kX] - q[pr.i][t][kX], ny = q[pr.j][t][kY] - q[pr.i][t][kY];
+      z[layout_.gap_index(p, t)] = std::hypot(nx, ny) - R;
+    }
+    if (!layout_.has_contact(p)) continue;
+    for (int t = 0; t < N; ++t) {
+      const double nx = q[pr.j][t][kX] - q[pr.i][t][kX], ny = q[pr.j][t][kY] - q[pr.i][t][kY];
+      const double vt = -ny * (q[pr.j][t + 1][kVx] - q[pr.i][t + 1][kVx]) +
+                        nx * (q[pr.j][t + 1][kVy] - q[pr.i][t + 1][kVy]);
+      z[layout_.contact_gamma_index(p, t)] = std::abs(vt);
+    }
+  }
+  return z;
+}
+
+}  // namespace disco

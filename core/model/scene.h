@@ -1,0 +1,66 @@
+// disco — a scene: the robots, their pairs and the time grid, in SI units.
+//
+// This is what a scene file (core/model/scene_yaml.h) describes and what the
+// robot model (core/model/robot_problem.h) is built from. Every number here has
+// already been validated by the parser; the model may rely on the invariants
+// written beside each field.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/util/numbers.h"
+
+namespace disco {
+
+// The six state components of a disk robot, in this order everywhere in disco
+// (state arrays, target boxes, solution files).
+enum StateIndex { kX = 0, kY = 1, kPhi = 2, kVx = 3, kVy = 4, kOmega = 5 };
+inline constexpr int kStateSize = 6;
+using State = std::array<double, kStateSize>;
+
+// A closed interval per state component; -inf / +inf where unbounded.
+struct StateBox {
+  State lower{-kInf, -kInf, -kInf, -kInf, -kInf, -kInf};
+  State upper{kInf, kInf, kInf, kInf, kInf, kInf};
+};
+
+struct Robot {
+  std::string name;         // unique within the scene
+  double radius = 0;        // R > 0 [m]
+  double mass = 0;          // M > 0 [kg]
+  double inertia = 0;       // I > 0 [kg m^2]; 0.5 M R^2 (uniform disk) unless given
+  double mu = 0;            // floor friction coefficient, >= 0
+  double damping = 0;       // sigma_d >= 0 [m s]: floor torque = -sigma_d M g omega
+  double force_max = 0;     // F_max > mu M g [N]: |F_x|, |F_y| <= F_max (infinity norm)
+  int force_dims = 2;       // D_ef: 1 (force along force_axis only) or 2
+  std::array<double, 2> force_axis{1.0, 0.0};  // unit vector, used when force_dims == 1
+  int friction_edges = 16;  // K >= 3: vertices of the floor-friction polygon
+  State start{};            // initial state (x, y, phi, vx, vy, omega)
+  StateBox target;          // terminal box on the state at T_f
+};
+
+enum class PairMode {
+  kAvoid,    // the paper's set A: rho >= d_s at every step, no contact forces
+  kContact,  // the paper's set B: 0 <= c_n _|_ rho >= 0 and Coulomb contact friction
+};
+
+struct Pair {
+  int i = 0, j = 0;             // robot indices, i < j
+  PairMode mode = PairMode::kAvoid;
+  double safe_distance = 0;     // d_s >= 0 [m] (avoid mode)
+  double mu = 0;                // contact friction coefficient >= 0 (contact mode)
+};
+
+struct Scene {
+  std::string name;             // the scenario's name
+  std::string source;           // the file it came from (for messages)
+  int steps = 100;              // N_t >= 1
+  double gravity = 9.81;        // g > 0 [m/s^2]
+  std::vector<Robot> robots;    // at least one
+  std::vector<Pair> pairs;      // exactly one per robot pair (i < j), in (i, j) order
+};
+
+}  // namespace disco

@@ -1,0 +1,665 @@
+// disco — scene file reader. The format and its rules are documented in scene_yaml.h.
+#include "core/model/scene_yaml.h"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/util/errors.h"
+
+namespace disco {
+namespace {
+
+const char* const kOverrideSource = "--set";
+
+const std::vector<std::string> kRootKeys = {"scenario", "description", "steps", "gravity",
+                                            "defaults", "robots",      "pairs"};
+// Robot keys that `defaults` may also give, in the order they are read.
+const std::vector<std::string> kFieldKeys = {
+    "radius", "mass", "inertia", "mu", "damping", "force_max", "force_dims", "force_axis", "K"};
+const std::vector<std::string> kRobotKeys = {"name",       "radius",  "mass",      "inertia",
+                                             "mu",         "damping", "force_max", "force_dims",
+                                             "force_axis", "K",       "start",     "target"};
+const std::vector<std::string> kStateKeys = {"x", "y", "phi", "vx", "vy", "omega"};
+const std::vector<std::string> kPairsKeys = {"mode", "safe_distance", "mu", "overrides"};
+const std::vector<std::string> kPairOverrideKeys = {"robots", "mode", "safe_distance", "mu"};
+
+constexpr double kTouchTolerance = 1e-12;  // relative, for the start-overlap checks
+
+std::string show(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (const std::string& s : items) out += (out.empty() ? "" : ", ") + s;
+  return out;
+}
+
+std::string child(const std::string& path, const std::string& key) {
+  return path.empty() ? key : path + "." + key;
+}
+
+std::string item(const std::string& path, std::size_t index) {
+  return path + "[" + std::to_string(index) + "]";
+}
+
+// "[0].x" -> ".0.x": an indexed key path written the way --set spells it.
+std::string dotted(const std::string& indexed) {
+  std::string out;
+  for (char c : indexed) {
+    if (c == '[')
+      out += '.';
+    else if (c != ']')
+      out += c;
+  }
+  return out;
+}
+
+bool is_index(const std::string& s) {
+  if (s.empty() || s.size() > 9) return false;
+  for (char c : s) {
+    if (c < '0' || c > '9') return false;
+  }
+  return true;
+}
+
+bool is_name(const std::string& s) {
+  if (s.empty()) return false;
+  for (char c : s) {
+    const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                    c == '_' || c == '-' || c == '.';
+    if (!ok) return false;
+  }
+  return true;
+}
+
+// What a node holds, for the "(got ...)" part of messages.
+std::string describe(const YAML::Node& n) {
+  if (!n.IsDefined()) return "nothing";
+  switch (n.Type()) {
+    case YAML::NodeType::Null:
+      return "null";
+    case YAML::NodeType::Scalar:
+      return n.Tag() == "!" ? "the quoted string \"" + n.Scalar() + "\"" : "'" + n.Scalar() + "'";
+    case YAML::NodeType::Sequence:
+      return "a sequence";
+    case YAML::NodeType::Map:
+      return "a mapping";
+    default:
+      return "nothing";
+  }
+}
+
+// A node (or a mapping key) that came from an override: its indexed path and the key as
+// given on the command line. Everything at or below `path` is reported as "--set".
+struct OverrideRecord {
+  std::string path;
+  std::string key;
+};
+
+[[noreturn]] void override_fail(const std::string& key, const std::string& what) {
+  throw InputError(located_message(kOverrideSource, 0, key, what));
+}
+
+std::vector<std::string> split_dots(const std::string& key) {
+  std::vector<std::string> parts;
+  std::size_t begin = 0;
+  while (true) {
+    const std::size_t dot = key.find('.', begin);
+    parts.push_back(key.substr(begin, dot == std::string::npos ? std::string::npos : dot - begin));
+    if (dot == std::string::npos) break;
+    begin = dot + 1;
+  }
+  return parts;
+}
+
+// Applies one "KEY=VALUE" override to `root` (a mapping) and records what it touched.
+void apply_override(YAML::Node& root, const std::string& assignment,
+                    std::vector<OverrideRecord>& records) {
+  const std::size_t eq = assignment.find('=');
+  if (eq == std::string::npos) override_fail(assignment, "expected KEY=VALUE");
+  const std::string key = assignment.substr(0, eq);
+  const std::string text = assignment.substr(eq + 1);
+  const std::vector<std::string> parts = split_dots(key);
+  for (const std::string& p : parts) {
+    if (p.empty()) override_fail(key, "malformed key (expected a dotted path like robots.0.mass)");
+  }
+  YAML::Node value;
+  try {
+    value = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    override_fail(key, "cannot parse the value '" + text + "' as YAML: " + e.msg);
+  }
+
+  YAML::Node cur = root;
+  std::string path;    // indexed, e.g. robots[0].start
+  std::string prefix;  // dotted, as on the command line
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    const std::string& part = parts[k];
+    const bool last = k + 1 == parts.size();
+    const std::string here = prefix.empty() ? part : prefix + "." + part;
+    const YAML::Node& ccur = cur;
+    if (cur.IsMap()) {
+      path = child(path, part);
+      if (last) {
+        cur[part] = value;
+        records.push_back({path, key});
+        return;
+      }
+      const YAML::Node existing = ccur[part];
+      if (!existing.IsDefined() || existing.IsNull()) {
+        cur[part] = YAML::Node(YAML::NodeType::Map);
+        records.push_back({path, here});
+      }
+      const YAML::Node next = cur[part];
+      cur.reset(next);
+    } else if (cur.IsSequence()) {
+      if (!is_index(part)) {
+        override_fail(
+            key, "'" + prefix + "' is a sequence: '" + part + "' must be an index (0, 1, ...)");
+      }
+      const std::size_t index = std::stoul(part);
+      const std::size_t size = cur.size();
+      path = item(path, index);
+      if (index > size || (index == size && !last)) {
+        override_fail(key, "index " + part + " is out of range: '" + prefix + "' has " +
+                               std::to_string(size) + " entries");
+      }
+      if (last) {
+        if (index == size)
+          cur.push_back(value);
+        else
+          cur[index] = value;
+        records.push_back({path, key});
+        return;
+      }
+      const YAML::Node existing = ccur[index];
+      if (existing.IsNull()) {
+        cur[index] = YAML::Node(YAML::NodeType::Map);
+        records.push_back({path, here});
+      }
+      const YAML::Node next = cur[index];
+      cur.reset(next);
+    } else {
+      override_fail(key, "'" + prefix + "' is a single value; it has no entry '" + part + "'");
+    }
+    prefix = here;
+  }
+}
+
+// The document being validated: knows the source and the overrides, and builds messages.
+class Doc {
+ public:
+  Doc(std::string source, std::vector<OverrideRecord> records)
+      : source_(std::move(source)), records_(std::move(records)) {}
+
+  // Throws the InputError for `what` at key `path`; `at` is the offending node (or, for a
+  // missing key, its parent) and gives the line.
+  [[noreturn]] void fail(const YAML::Node& at, const std::string& path,
+                         const std::string& what) const {
+    for (auto it = records_.rbegin(); it != records_.rend(); ++it) {
+      const std::string& p = it->path;
+      if (path.compare(0, p.size(), p) == 0 &&
+          (path.size() == p.size() || path[p.size()] == '.' || path[p.size()] == '[')) {
+        throw InputError(
+            located_message(kOverrideSource, 0, it->key + dotted(path.substr(p.size())), what));
+      }
+    }
+    int line = 0;
+    if (at.IsDefined()) {
+      const YAML::Mark mark = at.Mark();
+      if (!mark.is_null()) line = mark.line + 1;
+      // An empty value ("mass:") is marked where the next token starts: use its key's line.
+      if (const auto it = null_lines_.find(path); at.IsNull() && it != null_lines_.end()) {
+        line = it->second;
+      }
+    }
+    // Values below `path` that came from overrides (e.g. robots.1.start.x for a start
+    // overlap reported at robots[1].start) are named too.
+    std::string below;
+    for (const OverrideRecord& r : records_) {
+      if (r.path.size() > path.size() && r.path.compare(0, path.size(), path) == 0 &&
+          (r.path[path.size()] == '.' || r.path[path.size()] == '[')) {
+        below += (below.empty() ? "" : ", ") + r.key;
+      }
+    }
+    if (!below.empty()) below = " (with --set " + below + ")";
+    throw InputError(located_message(source_, line, path, what + below));
+  }
+
+  // The entries of mapping `node`, checked: plain unique keys, all in `allowed`. A null
+  // node is an empty mapping when `null_ok`.
+  std::map<std::string, YAML::Node> mapping(const YAML::Node& node, const std::string& path,
+                                            const std::vector<std::string>& allowed,
+                                            bool null_ok) const {
+    std::map<std::string, YAML::Node> out;
+    if (null_ok && node.IsNull()) return out;
+    if (!node.IsMap()) fail(node, path, "must be a mapping (got " + describe(node) + ")");
+    for (const auto& kv : node) {
+      const YAML::Node& k = kv.first;
+      if (!k.IsScalar())
+        fail(k, path, "mapping keys must be plain names (got " + describe(k) + ")");
+      const std::string name = k.Scalar();
+      const std::string at = child(path, name);
+      bool known = false;
+      for (const std::string& a : allowed) known = known || a == name;
+      if (!known) fail(k, at, "unknown key (allowed: " + join(allowed) + ")");
+      if (out.count(name) != 0) fail(k, at, "duplicate key");
+      out.emplace(name, kv.second);
+      if (kv.second.IsNull()) null_lines_[at] = k.Mark().line + 1;
+    }
+    return out;
+  }
+
+  double number(const YAML::Node& n, const std::string& path) const {
+    if (!n.IsScalar() || n.Tag() == "!")
+      fail(n, path, "must be a number (got " + describe(n) + ")");
+    double v = 0;
+    try {
+      v = n.as<double>();
+    } catch (const YAML::Exception&) {
+      fail(n, path, "must be a number (got " + describe(n) + ")");
+    }
+    if (!std::isfinite(v)) fail(n, path, "must be a finite number (got " + describe(n) + ")");
+    return v;
+  }
+
+  double positive(const YAML::Node& n, const std::string& path) const {
+    const double v = number(n, path);
+    if (!(v > 0)) fail(n, path, "must be > 0 (got " + show(v) + ")");
+    return v;
+  }
+
+  double non_negative(const YAML::Node& n, const std::string& path) const {
+    const double v = number(n, path);
+    if (v < 0) fail(n, path, "must be >= 0 (got " + show(v) + ")");
+    return v;
+  }
+
+  int integer(const YAML::Node& n, const std::string& path) const {
+    if (!n.IsScalar() || n.Tag() == "!") {
+      fail(n, path, "must be an integer (got " + describe(n) + ")");
+    }
+    try {
+      return n.as<int>();
+    } catch (const YAML::Exception&) {
+      fail(n, path, "must be an integer (got " + describe(n) + ")");
+    }
+  }
+
+  std::string text(const YAML::Node& n, const std::string& path) const {
+    if (!n.IsScalar()) fail(n, path, "must be text (got " + describe(n) + ")");
+    return n.Scalar();
+  }
+
+  std::string name(const YAML::Node& n, const std::string& path) const {
+    const std::string s = text(n, path);
+    if (!is_name(s)) {
+      fail(n, path,
+           "must be a name made of letters, digits, '_', '-' and '.' (got " + describe(n) + ")");
+    }
+    return s;
+  }
+
+  PairMode mode(const YAML::Node& n, const std::string& path) const {
+    const std::string s = text(n, path);
+    if (s == "avoid") return PairMode::kAvoid;
+    if (s == "contact") return PairMode::kContact;
+    fail(n, path, "must be 'avoid' or 'contact' (got " + describe(n) + ")");
+  }
+
+ private:
+  std::string source_;
+  std::vector<OverrideRecord> records_;
+  mutable std::map<std::string, int> null_lines_;  // key path -> line of its key, for nulls
+};
+
+// Where a robot field's value was given: a node and its key path (in the robot itself or
+// under `defaults`).
+struct Origin {
+  YAML::Node node;
+  std::string path;
+};
+
+struct RobotDraft {
+  Robot robot;
+  std::map<std::string, Origin> origin;  // the fields given so far
+};
+
+void set_field(const Doc& doc, const std::string& key, const YAML::Node& n, const std::string& path,
+               RobotDraft& d) {
+  Robot& r = d.robot;
+  if (key == "radius") {
+    r.radius = doc.positive(n, path);
+  } else if (key == "mass") {
+    r.mass = doc.positive(n, path);
+  } else if (key == "inertia") {
+    r.inertia = doc.positive(n, path);
+  } else if (key == "mu") {
+    r.mu = doc.non_negative(n, path);
+  } else if (key == "damping") {
+    r.damping = doc.non_negative(n, path);
+  } else if (key == "force_max") {
+    r.force_max = doc.positive(n, path);
+  } else if (key == "force_dims") {
+    const int dims = doc.integer(n, path);
+    if (dims != 1 && dims != 2) doc.fail(n, path, "must be 1 or 2 (got " + n.Scalar() + ")");
+    r.force_dims = dims;
+  } else if (key == "force_axis") {
+    if (!n.IsSequence() || n.size() != 2) {
+      doc.fail(n, path, "must be a 2-vector [ax, ay] (got " + describe(n) + ")");
+    }
+    const double ax = doc.number(n[0], item(path, 0));
+    const double ay = doc.number(n[1], item(path, 1));
+    const double norm = std::hypot(ax, ay);
+    if (!(norm > 0)) doc.fail(n, path, "must not be the zero vector");
+    r.force_axis = {ax / norm, ay / norm};
+  } else if (key == "K") {
+    const int k = doc.integer(n, path);
+    if (k < 3) doc.fail(n, path, "must be >= 3 (got " + std::to_string(k) + ")");
+    r.friction_edges = k;
+  }
+  d.origin[key] = Origin{n, path};
+}
+
+State read_start(const Doc& doc, const YAML::Node& n, const std::string& path) {
+  const auto fields = doc.mapping(n, path, kStateKeys, false);
+  State s{};
+  for (int c = 0; c < kStateSize; ++c) {
+    const std::string& key = kStateKeys[c];
+    const auto it = fields.find(key);
+    if (it == fields.end()) {
+      if (c == kX || c == kY) doc.fail(n, child(path, key), "is required but missing");
+      continue;
+    }
+    s[c] = doc.number(it->second, child(path, key));
+  }
+  return s;
+}
+
+StateBox read_target(const Doc& doc, const YAML::Node& n, const std::string& path) {
+  const auto fields = doc.mapping(n, path, kStateKeys, true);
+  StateBox box;
+  for (int c = 0; c < kStateSize; ++c) {
+    const auto it = fields.find(kStateKeys[c]);
+    if (it == fields.end()) continue;
+    const YAML::Node& v = it->second;
+    const std::string at = child(path, kStateKeys[c]);
+    if (v.IsNull()) continue;
+    if (v.IsSequence()) {
+      if (v.size() != 2) {
+        doc.fail(v, at, "a box must be [lo, hi] (got " + std::to_string(v.size()) + " elements)");
+      }
+      if (!v[0].IsNull()) box.lower[c] = doc.number(v[0], item(at, 0));
+      if (!v[1].IsNull()) box.upper[c] = doc.number(v[1], item(at, 1));
+      if (box.lower[c] > box.upper[c]) {
+        doc.fail(v, at,
+                 "lower bound " + show(box.lower[c]) + " > upper bound " + show(box.upper[c]));
+      }
+    } else if (v.IsScalar()) {
+      box.lower[c] = box.upper[c] = doc.number(v, at);
+    } else {
+      doc.fail(v, at, "must be a number or a box [lo, hi] (got " + describe(v) + ")");
+    }
+  }
+  return box;
+}
+
+std::vector<Robot> read_robots(const Doc& doc, const YAML::Node& seq, const YAML::Node& defaults,
+                               double gravity) {
+  RobotDraft base;
+  for (const auto& [key, node] : doc.mapping(defaults, "defaults", kFieldKeys, true)) {
+    set_field(doc, key, node, child("defaults", key), base);
+  }
+  if (!seq.IsSequence()) {
+    doc.fail(seq, "robots", "must be a sequence of robots (got " + describe(seq) + ")");
+  }
+  if (seq.size() == 0) doc.fail(seq, "robots", "must list at least one robot");
+
+  std::vector<Robot> robots;
+  std::map<std::string, std::size_t> index_of;
+  for (std::size_t i = 0; i < seq.size(); ++i) {
+    const YAML::Node node = seq[i];
+    const std::string path = item("robots", i);
+    const auto fields = doc.mapping(node, path, kRobotKeys, false);
+    RobotDraft d = base;
+    Robot& r = d.robot;
+
+    const auto name_it = fields.find("name");
+    if (name_it == fields.end()) doc.fail(node, child(path, "name"), "is required but missing");
+    r.name = doc.name(name_it->second, child(path, "name"));
+    if (const auto dup = index_of.find(r.name); dup != index_of.end()) {
+      doc.fail(name_it->second, child(path, "name"),
+               "duplicate robot name '" + r.name + "' (already used by " +
+                   item("robots", dup->second) + ")");
+    }
+    index_of[r.name] = i;
+
+    for (const std::string& key : kFieldKeys) {
+      if (const auto it = fields.find(key); it != fields.end()) {
+        set_field(doc, key, it->second, child(path, key), d);
+      }
+    }
+    for (const char* key : {"radius", "mass", "mu", "force_max"}) {
+      if (d.origin.count(key) == 0) {
+        doc.fail(node, child(path, key), "is required (here or under 'defaults') but missing");
+      }
+    }
+    if (d.origin.count("inertia") == 0) r.inertia = 0.5 * r.mass * r.radius * r.radius;
+    if (d.origin.count("damping") == 0) r.damping = 0.1 * r.radius;
+
+    const auto start_it = fields.find("start");
+    if (start_it == fields.end()) doc.fail(node, child(path, "start"), "is required but missing");
+    r.start = read_start(doc, start_it->second, child(path, "start"));
+    if (const auto it = fields.find("target"); it != fields.end()) {
+      r.target = read_target(doc, it->second, child(path, "target"));
+    }
+
+    const double resistance = r.mu * r.mass * gravity;
+    if (!(r.force_max > resistance)) {
+      const Origin& o = d.origin.at("force_max");
+      doc.fail(o.node, o.path,
+               "robot '" + r.name + "' is too weak to move: force_max = " + show(r.force_max) +
+                   " N must exceed mu * mass * gravity = " + show(r.mu) + " * " + show(r.mass) +
+                   " * " + show(gravity) + " = " + show(resistance) + " N");
+    }
+    robots.push_back(r);
+  }
+  return robots;
+}
+
+std::vector<Pair> read_pairs(const Doc& doc, const YAML::Node& n,
+                             const std::vector<Robot>& robots) {
+  const auto fields = doc.mapping(n, "pairs", kPairsKeys, true);
+  Pair base;
+  base.mode = PairMode::kAvoid;
+  base.safe_distance = 0.01;
+  base.mu = 0.3;
+  if (const auto it = fields.find("mode"); it != fields.end()) {
+    base.mode = doc.mode(it->second, "pairs.mode");
+  }
+  if (const auto it = fields.find("safe_distance"); it != fields.end()) {
+    base.safe_distance = doc.non_negative(it->second, "pairs.safe_distance");
+  }
+  if (const auto it = fields.find("mu"); it != fields.end()) {
+    base.mu = doc.non_negative(it->second, "pairs.mu");
+  }
+
+  const int count = static_cast<int>(robots.size());
+  std::vector<Pair> pairs;
+  std::map<std::pair<int, int>, std::size_t> slot;  // (i, j) -> index in `pairs`
+  for (int i = 0; i < count; ++i) {
+    for (int j = i + 1; j < count; ++j) {
+      Pair p = base;
+      p.i = i;
+      p.j = j;
+      slot[{i, j}] = pairs.size();
+      pairs.push_back(p);
+    }
+  }
+
+  const auto ov_it = fields.find("overrides");
+  if (ov_it == fields.end() || ov_it->second.IsNull()) return pairs;
+  const YAML::Node& seq = ov_it->second;
+  if (!seq.IsSequence()) {
+    doc.fail(seq, "pairs.overrides",
+             "must be a sequence of per-pair settings (got " + describe(seq) + ")");
+  }
+  std::map<std::pair<int, int>, std::string> seen;  // pair -> the override that set it
+  for (std::size_t k = 0; k < seq.size(); ++k) {
+    const YAML::Node entry = seq[k];
+    const std::string path = item("pairs.overrides", k);
+    const auto f = doc.mapping(entry, path, kPairOverrideKeys, false);
+    const std::string rpath = child(path, "robots");
+    const auto r_it = f.find("robots");
+    if (r_it == f.end()) doc.fail(entry, rpath, "is required but missing");
+    const YAML::Node& names = r_it->second;
+    if (!names.IsSequence() || names.size() != 2) {
+      doc.fail(names, rpath, "must be two robot names [a, b] (got " + describe(names) + ")");
+    }
+    int idx[2];
+    for (int e = 0; e < 2; ++e) {
+      const std::string nm = doc.text(names[e], item(rpath, e));
+      idx[e] = -1;
+      for (int r = 0; r < count; ++r) {
+        if (robots[r].name == nm) idx[e] = r;
+      }
+      if (idx[e] < 0) doc.fail(names[e], item(rpath, e), "unknown robot name '" + nm + "'");
+    }
+    if (idx[0] == idx[1]) {
+      doc.fail(names, rpath,
+               "a pair needs two distinct robots (got '" + robots[idx[0]].name + "' twice)");
+    }
+    const std::pair<int, int> key{std::min(idx[0], idx[1]), std::max(idx[0], idx[1])};
+    if (const auto s = seen.find(key); s != seen.end()) {
+      doc.fail(names, rpath,
+               "the pair (" + robots[key.first].name + ", " + robots[key.second].name +
+                   ") is already set by " + s->second);
+    }
+    seen[key] = path;
+    Pair& p = pairs[slot.at(key)];
+    if (const auto it = f.find("mode"); it != f.end()) {
+      p.mode = doc.mode(it->second, child(path, "mode"));
+    }
+    if (const auto it = f.find("safe_distance"); it != f.end()) {
+      p.safe_distance = doc.non_negative(it->second, child(path, "safe_distance"));
+    }
+    if (const auto it = f.find("mu"); it != f.end()) {
+      p.mu = doc.non_negative(it->second, child(path, "mu"));
+    }
+  }
+  return pairs;
+}
+
+void check_start_clearance(const Doc& doc, const YAML::Node& robots_node, const Scene& scene) {
+  for (const Pair& p : scene.pairs) {
+    const Robot& a = scene.robots[p.i];
+    const Robot& b = scene.robots[p.j];
+    const double dist = std::hypot(b.start[kX] - a.start[kX], b.start[kY] - a.start[kY]);
+    const double touch = a.radius + b.radius;
+    const std::string path = child(item("robots", p.j), "start");
+    const YAML::Node at = robots_node[p.j]["start"];
+    const std::string names = "robots '" + a.name + "' and '" + b.name + "'";
+    if (dist < touch * (1 - kTouchTolerance)) {
+      doc.fail(at, path,
+               names + " overlap at the start: centre distance " + show(dist) +
+                   " < R_i + R_j = " + show(touch));
+    }
+    const double clear = touch + p.safe_distance;
+    if (p.mode == PairMode::kAvoid && dist < clear * (1 - kTouchTolerance)) {
+      doc.fail(at, path,
+               names + " (an avoid pair) start too close: centre distance " + show(dist) +
+                   " < R_i + R_j + safe_distance = " + show(clear) +
+                   " (move them apart, lower safe_distance or use mode contact)");
+    }
+  }
+}
+
+Scene validate(const Doc& doc, const YAML::Node& root, const std::string& source) {
+  const auto fields = doc.mapping(root, "", kRootKeys, false);
+  auto required = [&](const std::string& key) -> const YAML::Node& {
+    const auto it = fields.find(key);
+    if (it == fields.end()) doc.fail(root, key, "is required but missing");
+    return it->second;
+  };
+  Scene scene;
+  scene.source = source;
+  scene.name = doc.name(required("scenario"), "scenario");
+  if (const auto it = fields.find("description"); it != fields.end() && !it->second.IsNull()) {
+    doc.text(it->second, "description");
+  }
+  const YAML::Node& steps = required("steps");
+  scene.steps = doc.integer(steps, "steps");
+  if (scene.steps < 1) {
+    doc.fail(steps, "steps", "must be >= 1 (got " + std::to_string(scene.steps) + ")");
+  }
+  scene.gravity = 9.81;
+  if (const auto it = fields.find("gravity"); it != fields.end()) {
+    scene.gravity = doc.positive(it->second, "gravity");
+  }
+  const auto def_it = fields.find("defaults");
+  const YAML::Node defaults = def_it == fields.end() ? YAML::Node() : def_it->second;
+  const YAML::Node& robots_node = required("robots");
+  scene.robots = read_robots(doc, robots_node, defaults, scene.gravity);
+  const auto pairs_it = fields.find("pairs");
+  const YAML::Node pairs = pairs_it == fields.end() ? YAML::Node() : pairs_it->second;
+  scene.pairs = read_pairs(doc, pairs, scene.robots);
+  check_start_clearance(doc, robots_node, scene);
+  return scene;
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& source,
+                  const std::vector<std::string>& overrides) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    const int line = e.mark.is_null() ? 0 : e.mark.line + 1;
+    throw InputError(located_message(source, line, "", "YAML syntax error: " + e.msg));
+  }
+  if (!root.IsMap()) {
+    const Doc plain(source, {});
+    if (root.IsNull()) plain.fail(root, "", "the scene is empty");
+    plain.fail(root, "", "a scene must be a YAML mapping (got " + describe(root) + ")");
+  }
+  std::vector<OverrideRecord> records;
+  for (const std::string& o : overrides) apply_override(root, o, records);
+  const Doc doc(source, std::move(records));
+  try {
+    return validate(doc, root, source);
+  } catch (const YAML::Exception& e) {
+    // Not expected: every access above is checked. Still a user-input problem.
+    const int line = e.mark.is_null() ? 0 : e.mark.line + 1;
+    throw InputError(located_message(source, line, "", e.msg));
+  }
+}
+
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw InputError(located_message(path, 0, "", "cannot open scene file: it is a directory"));
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(located_message(path, 0, "", "cannot open scene file"));
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InputError(located_message(path, 0, "", "cannot read scene file"));
+  return parse_scene(text.str(), path, overrides);
+}
+
+}  // namespace disco

@@ -1,0 +1,160 @@
+#include "core/model/solution.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <stdexcept>
+
+#include "core/model/lower_bound.h"
+
+namespace disco {
+namespace {
+
+using json = nlohmann::json;
+
+json bound(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+json state_json(const State& s) { return json(std::vector<double>(s.begin(), s.end())); }
+
+}  // namespace
+
+json solution_json(const RobotProblem& problem, const Vector& z, const SolutionInfo& info) {
+  const Scene& si = problem.scene();
+  const Scene& ms = problem.layout().scene();
+  const Layout& L = problem.layout();
+  const Units& u = problem.units();
+  const int N = si.steps;
+  const bool has = z.size() == problem.program().num_variables();
+  const auto size = problem.size();
+  const auto lb = problem.lower_bound();
+
+  json doc;
+  doc["scenario"] = si.name;
+  doc["status"] = info.status;
+  if (!info.detail.empty()) doc["status_detail"] = info.detail;
+  doc["T_f"] = has ? json(problem.horizon(z)) : json(nullptr);
+  doc["N_t"] = N;
+  doc["h"] = has ? json(problem.horizon(z) / N) : json(nullptr);
+  doc["g"] = si.gravity;
+  doc["lower_bound"] = lb ? json(*lb) : json(nullptr);
+  doc["model"] = {{"variables", size.variables},
+                  {"constraints", size.constraints},
+                  {"complementarity_pairs", size.complementarity_pairs}};
+  doc["certificate"] = {
+      {"max_violation", bound(info.certificate.max_violation)},
+      {"max_complementarity", bound(info.certificate.max_complementarity)},
+      {"complementarity_product", bound(info.certificate.complementarity_product)},
+      {"units", "dimensionless: length = mean radius, mass = mean mass, force = mean F_max"}};
+  doc["timing"] = {
+      {"wall_s", info.wall_s}, {"nlp_solves", info.nlp_solves}, {"iterations", info.iterations}};
+
+  const State unit{u.length, u.length, 1.0, u.velocity(), u.velocity(), 1.0 / u.time};
+  auto value = [&](const Affine& a) { return a.value(z); };
+  const int nr = static_cast<int>(si.robots.size());
+  const int np = static_cast<int>(si.pairs.size());
+
+  // Contact forces and torques on each robot, in model units, per step.
+  std::vector<std::vector<std::array<double, 3>>> contact(
+      nr, std::vector<std::array<double, 3>>(N, {0.0, 0.0, 0.0}));
+  json pairs = json::array();
+  for (int p = 0; p < np; ++p) {
+    const Pair& pr = si.pairs[p];
+    json jp = {{"i", pr.i},
+               {"j", pr.j},
+               {"mode", pr.mode == PairMode::kContact ? "contact" : "avoid"},
+               {"safe_distance", pr.safe_distance},
+               {"mu", pr.mu}};
+    if (has) {
+      std::vector<double> dist(N + 1), fn(N, 0.0), ft(N, 0.0);
+      for (int t = 0; t <= N; ++t) dist[t] = value(L.gap(p, t)) * u.length;
+      if (L.has_contact(p)) {
+        const double Ri = ms.robots[pr.i].radius, Rj = ms.robots[pr.j].radius;
+        for (int t = 0; t < N; ++t) {
+          const double cn = value(L.normal_force(p, t));
+          const double slip = value(L.alpha1(p, t)) - value(L.alpha2(p, t));
+          const double o = value(L.centre_distance(p, t));
+          fn[t] = cn * o * u.force();
+          ft[t] = slip * o * u.force();
+          for (int a = 0; a < 2; ++a) {
+            const double f = cn * value(L.normal(p, t, a)) + slip * value(L.tangent(p, t, a));
+            contact[pr.j][t][a] += f;
+            contact[pr.i][t][a] -= f;
+          }
+          contact[pr.j][t][2] += -Rj * o * slip;
+          contact[pr.i][t][2] += -Ri * o * slip;
+        }
+      }
+      jp["distance"] = dist;
+      jp["normal_force"] = fn;
+      jp["tangential_force"] = ft;
+    } else {
+      jp["distance"] = jp["normal_force"] = jp["tangential_force"] = nullptr;
+    }
+    pairs.push_back(jp);
+  }
+
+  json robots = json::array();
+  static const char* kNames[kStateSize] = {"x", "y", "phi", "vx", "vy", "omega"};
+  for (int i = 0; i < nr; ++i) {
+    const Robot& rb = si.robots[i];
+    json lower = json::array(), upper = json::array();
+    for (int c = 0; c < kStateSize; ++c) {
+      lower.push_back(bound(rb.target.lower[c]));
+      upper.push_back(bound(rb.target.upper[c]));
+    }
+    json jr = {{"name", rb.name},     {"radius", rb.radius},       {"mass", rb.mass},
+               {"inertia", rb.inertia}, {"mu", rb.mu},             {"damping", rb.damping},
+               {"F_max", rb.force_max}, {"force_dims", rb.force_dims}, {"K", rb.friction_edges},
+               {"start", state_json(rb.start)}, {"target", {{"lower", lower}, {"upper", upper}}}};
+    if (rb.force_dims == 1) jr["force_axis"] = {rb.force_axis[0], rb.force_axis[1]};
+    if (has) {
+      for (int c = 0; c < kStateSize; ++c) {
+        std::vector<double> v(N + 1);
+        for (int t = 0; t <= N; ++t) v[t] = value(L.state(i, t, c)) * unit[c];
+        jr[kNames[c]] = v;
+      }
+      std::vector<double> fx(N), fy(N), wx(N, 0.0), wy(N, 0.0), cx(N), cy(N), ct(N);
+      const Robot& mr = ms.robots[i];
+      for (int t = 0; t < N; ++t) {
+        fx[t] = value(L.force(i, t, 0)) * u.force();
+        fy[t] = value(L.force(i, t, 1)) * u.force();
+        if (L.has_floor_friction(i)) {
+          for (int k = 0; k < mr.friction_edges; ++k) {
+            const double a = 2.0 * std::numbers::pi * k / mr.friction_edges;
+            const double b = value(L.beta(i, t, k)) * u.force();
+            wx[t] += b * std::cos(a);
+            wy[t] += b * std::sin(a);
+          }
+        }
+        cx[t] = contact[i][t][0] * u.force();
+        cy[t] = contact[i][t][1] * u.force();
+        ct[t] = contact[i][t][2] * u.torque();
+      }
+      jr["Fx"] = fx;
+      jr["Fy"] = fy;
+      jr["friction_x"] = wx;
+      jr["friction_y"] = wy;
+      jr["contact_x"] = cx;
+      jr["contact_y"] = cy;
+      jr["contact_torque"] = ct;
+    }
+    robots.push_back(jr);
+  }
+  doc["robots"] = robots;
+  doc["pairs"] = pairs;
+  return doc;
+}
+
+void write_json_file(const std::string& path, const json& doc) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp);
+    if (!out) throw std::runtime_error("cannot write " + tmp);
+    out << doc.dump(1) << '\n';
+    if (!out) throw std::runtime_error("cannot write " + tmp);
+  }
+  std::filesystem::rename(tmp, path);
+}
+
+}  // namespace disco

@@ -1,0 +1,43 @@
+// disco — the solution file (solution.json), in SI units.
+//
+// Schema (documented for users in README.md, "The solution file"):
+//   scenario, status, status_detail (when not solved), T_f, N_t, h, g, lower_bound (or null),
+//   model {variables, constraints, complementarity_pairs},
+//   certificate {max_violation, max_complementarity, complementarity_product, units},
+//   timing {wall_s, nlp_solves, iterations},
+//   robots[]: name, radius, mass, inertia, mu, damping, F_max, force_dims, K,
+//     start[6], target {lower[6], upper[6]} (null where unbounded),
+//     x, y, phi, vx, vy, omega (N_t + 1 values; index 0 = the start),
+//     Fx, Fy, friction_x, friction_y, contact_x, contact_y, contact_torque (N_t values:
+//     over the step from t to t+1; contact_* sum every contact force on the robot);
+//   pairs[]: i, j, mode, safe_distance, mu, distance (N_t + 1: rho),
+//     normal_force (N_t: push of i on j along the unit vector from i's centre to j's),
+//     tangential_force (N_t: i's force on j along that unit vector turned +90 degrees);
+//     the force on i is the opposite.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "core/elastic/elastic_solver.h"
+#include "core/model/robot_problem.h"
+
+namespace disco {
+
+struct SolutionInfo {
+  std::string status;  // "solved", "infeasible", "failed"
+  std::string detail;  // when not solved: the last feasibility solve's own status
+  Certificate certificate;
+  double wall_s = 0.0;
+  int nlp_solves = 0, iterations = 0;
+};
+
+// The trajectory of point z (model units) of `problem`, with `info`; z may be
+// empty (no solution): then T_f and the arrays are null.
+nlohmann::json solution_json(const RobotProblem& problem, const Vector& z, const SolutionInfo& info);
+
+// Writes JSON to `path` atomically (temporary file, then rename).
+void write_json_file(const std::string& path, const nlohmann::json& doc);
+
+}  // namespace disco

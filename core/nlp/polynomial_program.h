@@ -1,0 +1,118 @@
+// disco — an MPCC whose objective and rows are polynomials of degree <= 3.
+//
+// Every row is a sum of monomials  coef * z_a * z_b * z_c  (fewer factors
+// allowed, repeated variables allowed) plus a constant. The robot model is of
+// this form once the centre distance is a variable (see
+// core/model/nonpenetration.h), so one evaluator with exact derivatives serves
+// every constraint family, and each family only states its equation:
+//
+//     P.add(row, -1.0, h, cn, Nx);      // adds -h * c_n * N_x to the row
+//
+// where each factor is an Affine expression (variables with coefficients plus a
+// constant) and the product is expanded into monomials when added.
+//
+// Derivatives (exact, per Nlp's contract). For a monomial m = c * prod_p z_{v_p}:
+//     dm/dz_k       = sum_{p : v_p = k} c * prod_{s != p} z_{v_s}
+//     d2m/dz_k dz_l = sum_{p != q : v_p = k, v_q = l} c * prod_{s != p, q} z_{v_s}
+// finalize() compiles, once, for every Jacobian and Hessian nonzero the list
+// of its contributions (row, coefficient, remaining variables). Evaluation then
+// writes every value in place, without allocation, in parallel (OpenMP) over
+// rows and nonzeros. Each output is summed by one thread in a fixed order, so
+// results are bitwise identical for any thread count.
+#pragma once
+
+#include <utility>
+#include <vector>
+
+#include "core/nlp/mpcc.h"
+
+namespace disco {
+
+// sum_k coef_k * z_{var_k} + constant.
+struct Affine {
+  std::vector<std::pair<int, double>> terms;
+  double constant = 0.0;
+
+  Affine() = default;
+  Affine(double c) : constant(c) {}  // NOLINT: a constant is an Affine
+  static Affine variable(int k, double coef = 1.0) {
+    Affine a;
+    a.terms.push_back({k, coef});
+    return a;
+  }
+  Affine& operator+=(const Affine& o);
+  Affine& operator*=(double s);
+  friend Affine operator+(Affine a, const Affine& b) { return a += b; }
+  friend Affine operator-(Affine a, const Affine& b) { return a += b * -1.0; }
+  friend Affine operator*(Affine a, double s) { return a *= s; }
+  friend Affine operator*(double s, Affine a) { return a *= s; }
+  friend Affine operator-(Affine a) { return a *= -1.0; }
+  double value(const ConstVectorRef& z) const;
+};
+
+class PolynomialProgram : public Mpcc {
+ public:
+  static constexpr int kObjective = -1;  // row index that means "the objective"
+
+  // --- building (before finalize) ---------------------------------------
+  int add_variable(double lo, double hi, double initial = 0.0);
+  int add_row(double lo, double hi);
+  // Adds coef * a (* b (* c)) to row r (or to the objective, r = kObjective).
+  void add(int r, double coef, const Affine& a);
+  void add(int r, double coef, const Affine& a, const Affine& b);
+  void add(int r, double coef, const Affine& a, const Affine& b, const Affine& c);
+  void add_pair(ComplementaritySide g, ComplementaritySide h);
+  // Compiles the derivative structure; no building afterwards.
+  void finalize();
+
+  bool finalized() const { return finalized_; }
+  // A starting point stored with the variables (add_variable's `initial`).
+  const Vector& initial_point() const { return z0_; }
+  Vector& initial_point() { return z0_; }
+  int num_monomials() const { return static_cast<int>(mono_coef_.size()); }
+
+ private:
+  struct Monomial {
+    double coef;
+    int v[3];  // sorted, -1 for absent factors (at the end)
+  };
+  void add_monomial(int r, double coef, int a, int b, int c);
+  void add_expanded(int r, double coef, const Affine* const* factors, int count);
+
+  bool do_objective(const ConstVectorRef& z, double& f) const override;
+  bool do_gradient(const ConstVectorRef& z, VectorRef grad) const override;
+  bool do_constraints(const ConstVectorRef& z, VectorRef c) const override;
+  bool do_jacobian(const ConstVectorRef& z, VectorRef values) const override;
+  bool do_hessian(const ConstVectorRef& z, double sigma, const ConstVectorRef& lambda,
+                  VectorRef values) const override;
+
+  double row_value(int r, const ConstVectorRef& z) const;
+
+  bool finalized_ = false;
+  Vector z0_;
+  // Building: monomials per row (index m = objective) and row constants.
+  std::vector<std::vector<Monomial>> building_;
+  std::vector<Monomial> objective_;
+  double objective_constant_ = 0.0;
+  std::vector<double> constant_;  // per row; after finalize, index m = objective
+
+  // Compiled rows: monomials of row r are [row_begin_[r], row_begin_[r+1]); row m = objective.
+  std::vector<int> row_begin_;
+  std::vector<double> mono_coef_;
+  std::vector<int> mono_v_;  // 3 per monomial
+
+  // A contribution to one derivative entry: weight(row) * coef * z_u * z_w
+  // (u, w = -1 when absent; w is always -1 for the Hessian).
+  struct Contributions {
+    std::vector<int> begin;  // per entry, CSR into the arrays below
+    std::vector<int> row;
+    std::vector<double> coef;
+    std::vector<int> u, w;
+  };
+  Contributions jac_c_;   // per Jacobian nonzero
+  Contributions grad_c_;  // per gradient entry (objective row)
+  std::vector<int> grad_var_;
+  Contributions hess_c_;  // per Hessian nonzero
+};
+
+}  // namespace disco

@@ -1,0 +1,125 @@
+// disco — the command-line tool.
+//
+//   disco solve SCENE.yaml [--out DIR] [--threads N] [--settings FILE] [--set KEY=VALUE ...]
+//
+// Finds a feasible point at a large fixed T_f, then runs the paper's inexact
+// objective reduction from it (search/objective_reduction.h), logging one line
+// per elastic-mode solve to stderr, and writes DIR/solution.json (schema:
+// core/model/solution.h and README.md). The file is written whatever the
+// outcome, with the status telling what happened.
+//
+// Exit status: 0 a certified solution was written; 3 the run ended without one
+// (status infeasible, failed or elastic_not_tight, still written); 2 bad input
+// or usage (the message names the file, line and key).
+#include <omp.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/config/settings.h"
+#include "core/config/solver_settings.h"
+#include "core/model/scene_yaml.h"
+#include "core/util/errors.h"
+#include "search/solve_scene.h"
+
+namespace {
+
+using namespace disco;
+
+struct SolveOptions {
+  std::string scene;
+  std::string out;
+  std::string settings = default_settings_path();
+  int threads = 0;
+  std::vector<std::string> sets;
+};
+
+int run_solve(const SolveOptions& o) {
+  std::vector<std::string> scene_sets, settings_sets;
+  split_overrides(o.sets, scene_sets, settings_sets);
+  Settings settings = Settings::load(o.settings);
+  for (const auto& s : settings_sets) settings.apply_override(s);
+  const Scene scene = load_scene(o.scene, scene_sets);
+  if (o.threads > 0) omp_set_num_threads(o.threads);
+  const std::string out_dir = o.out.empty() ? "out/" + scene.name : o.out;
+  std::filesystem::create_directories(out_dir);
+
+  {
+    const RobotProblem preview(scene);
+    const auto size = preview.size();
+    spdlog::info("scene {} ({}): {} robots, {} pairs, N_t = {}", scene.name, scene.source,
+                 scene.robots.size(), scene.pairs.size(), scene.steps);
+    spdlog::info("model: {} variables, {} constraints, {} complementarity pairs; {} threads",
+                 size.variables, size.constraints, size.complementarity_pairs,
+                 omp_get_max_threads());
+    if (const auto lb = preview.lower_bound())
+      spdlog::info("lower bound (each robot alone): {:.6f} s", *lb);
+  }
+  spdlog::info("{:>3} {:<11} {:>10} {:>10} {:<17} {:>9} {:>9} {:>4} {:>5} {:>7}", "#", "phase",
+               "bound[s]", "T_f[s]", "status", "compl", "viol", "nlp", "iter", "sec");
+  int count = 0;
+  auto on_solve = [&](const SolveRecord& r) {
+    spdlog::info("{:>3} {:<11} {:>10.5f} {:>10.5f} {:<17} {:>9.1e} {:>9.1e} {:>4} {:>5} {:>7.3f}{}",
+                 ++count, r.phase, r.bound, r.T_f, to_string(r.status),
+                 r.certificate.max_complementarity, r.certificate.max_violation, r.nlp_solves,
+                 r.iterations, r.seconds, r.improved ? "  *" : "");
+  };
+  const SceneSolve run = solve_scene(scene, settings, on_solve);
+  const std::string path = out_dir + "/solution.json";
+  write_json_file(path, solution_json(*run.problem, run.z, run.info));
+  const auto lb = run.problem->lower_bound();
+  if (run.solved()) {
+    spdlog::info("solved: T_f = {:.6f} s{}; certificate: violation {:.1e}, complementarity {:.1e}",
+                 run.T_f(),
+                 lb && *lb > 0 ? fmt::format(" ({:+.3f} % from the lower bound)",
+                                             100.0 * (run.T_f() - *lb) / *lb)
+                               : std::string(),
+                 run.info.certificate.max_violation, run.info.certificate.max_complementarity);
+  } else {
+    spdlog::warn("no certified solution: status {}", run.info.status);
+  }
+  spdlog::info("{} NLP solves, {} iterations, {:.3f} s; wrote {}", run.info.nlp_solves,
+               run.info.iterations, run.info.wall_s, path);
+  return run.solved() ? 0 : 3;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  auto logger = spdlog::stderr_color_mt("disco");
+  spdlog::set_default_logger(logger);
+  spdlog::set_pattern("%^%v%$");
+
+  CLI::App app{"disco: minimum-time control of disk robots with friction (elastic-mode MPCC)"};
+  app.require_subcommand(1);
+  SolveOptions solve;
+  auto* cmd = app.add_subcommand("solve", "Solve one scene from one start (objective reduction)");
+  cmd->add_option("scene", solve.scene, "Scene file (YAML)")->required();
+  cmd->add_option("--out", solve.out, "Output directory (default: out/SCENARIO)");
+  cmd->add_option("--threads", solve.threads, "OpenMP threads (default: OMP_NUM_THREADS)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--settings", solve.settings, "Solver settings file")
+      ->capture_default_str();
+  cmd->add_option("--set", solve.sets,
+                  "Override KEY=VALUE: a settings key (elastic.zeta_max=1e8, ipopt.tol=1e-10) "
+                  "or a scene key prefixed with 'scene.' (scene.steps=50)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  try {
+    if (cmd->parsed()) return run_solve(solve);
+  } catch (const InputError& e) {
+    spdlog::error("error: {}", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    spdlog::error("internal error: {}", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,105 @@
+#include "search/objective_reduction.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "core/util/errors.h"
+#include "core/util/numbers.h"
+
+namespace disco {
+
+ReductionSettings reduction_settings(const Settings& s) {
+  ReductionSettings r;
+  auto positive = [&](const std::string& key) {
+    const double v = s.number(key);
+    if (!(v > 0)) throw InputError(s.where(key) + ": key '" + key + "': must be positive");
+    return v;
+  };
+  r.horizon_factor = positive("feasibility.horizon_factor");
+  r.horizon_min = positive("feasibility.horizon_min");
+  r.rate = positive("reduction.rate");
+  if (r.rate >= 1) throw InputError(s.where("reduction.rate") + ": key 'reduction.rate': must be < 1");
+  r.grow = positive("reduction.grow");
+  r.shrink = positive("reduction.shrink");
+  if (r.shrink >= 1)
+    throw InputError(s.where("reduction.shrink") + ": key 'reduction.shrink': must be < 1");
+  r.min_rate = positive("reduction.min_rate");
+  r.max_solves = s.integer("reduction.max_solves");
+  if (r.max_solves < 0)
+    throw InputError(s.where("reduction.max_solves") + ": key 'reduction.max_solves': must be >= 0");
+  r.time_limit = s.number("reduction.time_limit");
+  if (r.time_limit < 0)
+    throw InputError(s.where("reduction.time_limit") + ": key 'reduction.time_limit': must be >= 0");
+  return r;
+}
+
+ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
+                                 const ReductionSettings& cfg, const Vector& guess_hint,
+                                 const SolveCallback& on_solve) {
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - t0).count(); };
+  ReductionResult out;
+  auto record = [&](const std::string& phase, double bound, const MpccResult& r, bool improved) {
+    SolveRecord rec{phase, bound, problem.horizon(r.z), r.status, r.ipopt_status, r.certificate,
+                    r.nlp_solves, r.iterations, r.seconds, improved};
+    out.solves.push_back(rec);
+    out.nlp_solves += r.nlp_solves;
+    out.iterations += r.iterations;
+    if (on_solve) on_solve(rec);
+  };
+
+  // 1. Feasibility at a fixed, generous horizon.
+  const auto lb = problem.lower_bound();
+  double T = cfg.horizon_min;
+  if (lb && std::isfinite(*lb)) T = std::max(T, cfg.horizon_factor * *lb);
+  for (int attempt = 0; attempt < 3 && !out.found; ++attempt, T *= 2.0) {
+    problem.fix_horizon(T);
+    const Vector guess = guess_hint.size() > 0 ? guess_hint : problem.straight_line_guess(T);
+    MpccResult r = solver.solve(problem.program(), guess);
+    out.feasibility_detail = to_string(r.status);
+    out.status = r.status == MpccStatus::kElasticNotTight ? MpccStatus::kInfeasible : r.status;
+    const bool ok = r.solved();
+    record("feasibility", T, r, ok);
+    if (ok) {
+      out.found = true;
+      out.best = std::move(r);
+      out.T_best = problem.horizon(out.best.z);
+      out.time_to_first_feasible = out.time_to_best = elapsed();
+    }
+    if (cfg.time_limit > 0 && elapsed() > cfg.time_limit) break;
+  }
+  if (!out.found) {
+    out.seconds = elapsed();
+    return out;
+  }
+
+  // 2. Inexact objective reduction.
+  double rate = cfg.rate;
+  for (int k = 0; k < cfg.max_solves && rate >= cfg.min_rate; ++k) {
+    if (cfg.time_limit > 0 && elapsed() > cfg.time_limit) break;
+    const double bound = (1.0 - rate) * out.T_best;
+    problem.limit_horizon(bound);
+    MpccResult r = solver.solve(problem.program(), out.best);
+    const double T_f = problem.horizon(r.z);
+    const bool improved = r.solved() && T_f < out.T_best;
+    record("reduction", bound, r, improved);
+    if (improved) {
+      out.best = std::move(r);
+      out.T_best = T_f;
+      out.time_to_best = elapsed();
+      rate *= cfg.grow;
+      rate = std::min(rate, 0.5);
+    } else {
+      rate *= cfg.shrink;
+    }
+  }
+  // Free the horizon again: the problem is the model itself for later users.
+  problem.limit_horizon(kInf);
+  out.status = MpccStatus::kSolved;
+  out.seconds = elapsed();
+  return out;
+}
+
+}  // namespace disco

@@ -1,0 +1,69 @@
+// disco — the paper's inexact objective reduction (Section IV-B, last
+// paragraph), from one start.
+//
+//   1. Feasibility: fix T_f = max(horizon_min, horizon_factor * LB) and solve
+//      the elastic MPCC from the guess (the objective is then constant). If it
+//      is not solved, double T_f and try again (three times at most).
+//   2. Reduction: with r = rate, require T_f <= (1 - r) T_best and minimise
+//      T_f, warm-started from the best point. A certified solution with a
+//      smaller T_f becomes the best and r *= grow; anything else r *= shrink.
+//      Stop when r < min_rate, after max_solves reduction solves, or when the
+//      time limit is reached.
+// Only certified (kSolved) points ever become the best. If no horizon gives
+// one, the scene is reported kInfeasible: Ipopt found the elastic NLP locally
+// infeasible, or complementarity could not be made tight (the elastic mode
+// needs eps > 0) at any horizon tried; `feasibility_detail` says which.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/config/settings.h"
+#include "core/elastic/elastic_solver.h"
+#include "core/model/robot_problem.h"
+
+namespace disco {
+
+struct ReductionSettings {
+  double horizon_factor = 2.0;
+  double horizon_min = 1.0;  // s
+  double rate = 0.05, grow = 1.5, shrink = 0.5, min_rate = 1e-3;
+  int max_solves = 40;
+  double time_limit = 0.0;  // s; 0 = none
+};
+ReductionSettings reduction_settings(const Settings& settings);  // `feasibility:` + `reduction:`
+
+// One elastic-mode solve (possibly several Ipopt solves inside).
+struct SolveRecord {
+  std::string phase;   // "feasibility" or "reduction"
+  double bound = 0.0;  // s: the fixed T_f (feasibility) or the upper bound on T_f
+  double T_f = 0.0;    // s: at the solve's end
+  MpccStatus status = MpccStatus::kFailed;
+  int ipopt_status = 0;
+  Certificate certificate;
+  int nlp_solves = 0, iterations = 0;
+  double seconds = 0.0;
+  bool improved = false;  // became the new best
+};
+
+struct ReductionResult {
+  bool found = false;        // a certified solution exists
+  MpccStatus status = MpccStatus::kFailed;  // kSolved if found; else kInfeasible or kFailed
+  std::string feasibility_detail;           // the last feasibility solve's own status
+  double T_best = 0.0;       // s
+  MpccResult best;           // the certified solve that gave T_best
+  std::vector<SolveRecord> solves;
+  int nlp_solves = 0, iterations = 0;
+  double seconds = 0.0;
+  double time_to_first_feasible = -1.0;  // s, -1 if none
+  double time_to_best = -1.0;
+};
+
+using SolveCallback = std::function<void(const SolveRecord&)>;
+
+ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
+                                 const ReductionSettings& settings, const Vector& guess_hint = {},
+                                 const SolveCallback& on_solve = {});
+
+}  // namespace disco

@@ -1,0 +1,332 @@
+// IpoptSolver: option checking (InputError naming where and what), a known
+// NLP solved to its optimum, a non-finite start handled without a crash, and
+// the wall-clock limit.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <thread>
+
+#include "core/ipopt/ipopt_solver.h"
+#include "core/nlp/derivative_checker.h"
+#include "core/nlp/polynomial_program.h"
+#include "core/util/errors.h"
+#include "core/util/numbers.h"
+#include "tests/test_support_mpcc.h"
+
+namespace disco {
+namespace {
+
+using test_support::disco_yaml_ipopt_options;
+
+// Constructs a solver from the valid defaults plus one extra option and
+// returns the InputError message ("" if nothing was thrown).
+std::string construction_error(const IpoptOption& extra) {
+  auto options = disco_yaml_ipopt_options();
+  options.push_back(extra);
+  try {
+    IpoptSolver solver(options);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(IpoptSolverOptions, UnknownNameIsAnInputErrorNamingWhereAndWhat) {
+  const std::string msg = construction_error({"no_such_option", "1", "settings.yaml:17"});
+  EXPECT_NE(msg.find("settings.yaml:17"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("no_such_option"), std::string::npos) << msg;
+}
+
+TEST(IpoptSolverOptions, BadNumericValueIsAnInputError) {
+  const std::string msg = construction_error({"tol", "abc", "--set"});
+  EXPECT_NE(msg.find("--set"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("tol"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("abc"), std::string::npos) << msg;
+  // Trailing garbage and an empty value are not numbers either.
+  EXPECT_NE(construction_error({"tol", "1e-8x", "w"}), "");
+  EXPECT_NE(construction_error({"tol", "", "w"}), "");
+  // Out of Ipopt's range (tol > 0).
+  EXPECT_NE(construction_error({"tol", "-1", "w"}), "");
+}
+
+TEST(IpoptSolverOptions, InvalidStringValueIsAnInputError) {
+  const std::string msg = construction_error({"mu_strategy", "sometimes", "cfg:3"});
+  EXPECT_NE(msg.find("cfg:3"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("mu_strategy"), std::string::npos) << msg;
+  EXPECT_NE(construction_error({"hessian_approximation", "exactly", "w"}), "");
+}
+
+TEST(IpoptSolverOptions, NonIntegerForAnIntegerOptionIsAnInputError) {
+  const std::string msg = construction_error({"max_iter", "2.5", "cfg:9"});
+  EXPECT_NE(msg.find("cfg:9"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("max_iter"), std::string::npos) << msg;
+  EXPECT_NE(construction_error({"max_iter", "ten", "w"}), "");
+  EXPECT_NE(construction_error({"print_level", "-3", "w"}), "");  // below Ipopt's range
+}
+
+TEST(IpoptSolverOptions, ValidListIsAccepted) {
+  EXPECT_NO_THROW(IpoptSolver solver(disco_yaml_ipopt_options()));
+  EXPECT_EQ(construction_error({"max_iter", "50", "w"}), "");
+  EXPECT_EQ(construction_error({"max_iter", "1e2", "w"}), "");  // an integral number
+  EXPECT_EQ(construction_error({"tol", "1e-7", "w"}), "");
+  EXPECT_EQ(construction_error({"mu_strategy", "monotone", "w"}), "");
+  EXPECT_NO_THROW(IpoptSolver solver({}));
+}
+
+// Finding (see the report): "nan" parses as a number and passes Ipopt's range
+// check (every comparison with NaN is false), so tol = nan is accepted.
+TEST(IpoptSolverOptions, NanIsNotANumericValue) {
+  EXPECT_NE(construction_error({"tol", "nan", "w"}), "");
+  EXPECT_NE(construction_error({"constr_viol_tol", "NaN", "w"}), "");
+}
+
+// An integral value beyond int's range must not reach Ipopt as some other
+// number. (It is rejected today only because the unchecked double -> int cast
+// in parse_number's caller yields INT_MIN on x86, which Ipopt refuses.)
+TEST(IpoptSolverOptions, IntegerOutOfRangeIsAnInputError) {
+  EXPECT_NE(construction_error({"max_iter", "1e10", "w"}), "");
+  EXPECT_NE(construction_error({"max_iter", "1e30", "w"}), "");
+}
+
+// ------------------------------------------------------------ hs071 ---
+
+// Hock & Schittkowski problem 71 (Ipopt's own example):
+//   min x1 x4 (x1 + x2 + x3) + x3
+//   s.t. x1 x2 x3 x4 >= 25, x1^2 + x2^2 + x3^2 + x4^2 = 40, 1 <= x <= 5,
+// start (1, 5, 5, 1); f* = 17.0140173 at (1, 4.7429996, 3.8211499, 1.3794083).
+class Hs071 : public Nlp {
+ public:
+  Hs071() {
+    z_lo_ = Vector::Constant(4, 1.0);
+    z_hi_ = Vector::Constant(4, 5.0);
+    c_lo_ = (Vector(2) << 25.0, 40.0).finished();
+    c_hi_ = (Vector(2) << kInf, 40.0).finished();
+    for (int r = 0; r < 2; ++r)
+      for (int k = 0; k < 4; ++k) jac_.add(r, k);
+    for (int r = 0; r < 4; ++r)
+      for (int k = 0; k <= r; ++k) hess_.add(r, k);
+  }
+
+ private:
+  bool do_objective(const ConstVectorRef& x, double& f) const override {
+    f = x[0] * x[3] * (x[0] + x[1] + x[2]) + x[2];
+    return true;
+  }
+  bool do_gradient(const ConstVectorRef& x, VectorRef g) const override {
+    g[0] = x[0] * x[3] + x[3] * (x[0] + x[1] + x[2]);
+    g[1] = x[0] * x[3];
+    g[2] = x[0] * x[3] + 1;
+    g[3] = x[0] * (x[0] + x[1] + x[2]);
+    return true;
+  }
+  bool do_constraints(const ConstVectorRef& x, VectorRef c) const override {
+    c[0] = x[0] * x[1] * x[2] * x[3];
+    c[1] = x.squaredNorm();
+    return true;
+  }
+  bool do_jacobian(const ConstVectorRef& x, VectorRef v) const override {
+    v[0] = x[1] * x[2] * x[3];
+    v[1] = x[0] * x[2] * x[3];
+    v[2] = x[0] * x[1] * x[3];
+    v[3] = x[0] * x[1] * x[2];
+    for (int k = 0; k < 4; ++k) v[4 + k] = 2 * x[k];
+    return true;
+  }
+  bool do_hessian(const ConstVectorRef& x, double s, const ConstVectorRef& l,
+                  VectorRef v) const override {
+    // Lower triangle, row by row: (0,0) (1,0) (1,1) (2,0) (2,1) (2,2) (3,0) ... (3,3).
+    v[0] = s * 2 * x[3] + l[1] * 2;
+    v[1] = s * x[3] + l[0] * x[2] * x[3];
+    v[2] = l[1] * 2;
+    v[3] = s * x[3] + l[0] * x[1] * x[3];
+    v[4] = l[0] * x[0] * x[3];
+    v[5] = l[1] * 2;
+    v[6] = s * (2 * x[0] + x[1] + x[2]) + l[0] * x[1] * x[2];
+    v[7] = s * x[0] + l[0] * x[0] * x[2];
+    v[8] = s * x[0] + l[0] * x[0] * x[1];
+    v[9] = l[1] * 2;
+    return true;
+  }
+};
+
+TEST(IpoptSolverSolve, Hs071HasExactDerivatives) {
+  const Hs071 nlp;
+  Vector x(4), l(2);
+  x << 1.3, 4.1, 3.7, 1.9;
+  l << -0.7, 0.4;
+  const auto rep = check_derivatives(nlp, x, 1.1, l);
+  ASSERT_TRUE(rep.evaluated);
+  EXPECT_LT(rep.gradient_error, 1e-6);
+  EXPECT_LT(rep.jacobian_error, 1e-6);
+  EXPECT_LT(rep.hessian_error, 1e-6);
+  EXPECT_EQ(rep.jacobian_outside, 0.0);
+  EXPECT_EQ(rep.hessian_outside, 0.0);
+}
+
+TEST(IpoptSolverSolve, Hs071ReachesItsKnownOptimum) {
+  const Hs071 nlp;
+  IpoptSolver solver(disco_yaml_ipopt_options());
+  NlpPoint start;
+  start.z = (Vector(4) << 1.0, 5.0, 5.0, 1.0).finished();
+  const NlpResult r = solver.solve(nlp, start);
+  ASSERT_TRUE(r.converged()) << ipopt_status_name(r.ipopt_status);
+  EXPECT_EQ(r.ipopt_status, 0);
+  EXPECT_NEAR(r.objective, 17.0140173, 1e-6);
+  EXPECT_NEAR(r.point.z[0], 1.0, 1e-6);
+  EXPECT_NEAR(r.point.z[1], 4.7429996, 1e-6);
+  EXPECT_NEAR(r.point.z[2], 3.8211499, 1e-6);
+  EXPECT_NEAR(r.point.z[3], 1.3794083, 1e-6);
+  EXPECT_GT(r.iterations, 0);
+  // The duals come back with the right shapes (they warm-start later solves)
+  // and Ipopt's sign convention: x1 sits at its lower bound with a positive
+  // multiplier; the active inequality c0 >= 25 has a negative multiplier.
+  ASSERT_EQ(r.point.lambda.size(), 2);
+  ASSERT_EQ(r.point.z_lo.size(), 4);
+  ASSERT_EQ(r.point.z_hi.size(), 4);
+  EXPECT_GT(r.point.z_lo[0], 1e-3);
+  EXPECT_LT(r.point.lambda[0], 0.0);
+
+  // A warm start from the solution converges at once.
+  const NlpResult again = solver.solve(nlp, r.point);
+  ASSERT_TRUE(again.converged());
+  EXPECT_NEAR(again.objective, 17.0140173, 1e-6);
+  EXPECT_LE(again.iterations, 2);
+}
+
+// f = sqrt(x - 1) + x: NaN at the start x = 0.
+class NanAtStart : public Nlp {
+ public:
+  NanAtStart() {
+    z_lo_ = Vector::Constant(1, -1.0);
+    z_hi_ = Vector::Constant(1, 10.0);
+    hess_.add(0, 0);
+  }
+
+ private:
+  bool do_objective(const ConstVectorRef& x, double& f) const override {
+    f = std::sqrt(x[0] - 1) + x[0];
+    return true;
+  }
+  bool do_gradient(const ConstVectorRef& x, VectorRef g) const override {
+    g[0] = 0.5 / std::sqrt(x[0] - 1) + 1;
+    return true;
+  }
+  bool do_constraints(const ConstVectorRef&, VectorRef) const override { return true; }
+  bool do_jacobian(const ConstVectorRef&, VectorRef) const override { return true; }
+  bool do_hessian(const ConstVectorRef& x, double s, const ConstVectorRef&,
+                  VectorRef v) const override {
+    v[0] = -s * 0.25 * std::pow(x[0] - 1, -1.5);
+    return true;
+  }
+};
+
+TEST(IpoptSolverSolve, NanAtTheStartIsANonConvergedStatusNotACrash) {
+  const NanAtStart nlp;
+  double f = 0.0;
+  ASSERT_FALSE(nlp.objective(Vector::Zero(1), f));  // the wrapper already says no
+  IpoptSolver solver(disco_yaml_ipopt_options());
+  NlpPoint start;
+  start.z = Vector::Zero(1);
+  const NlpResult r = solver.solve(nlp, start);
+  EXPECT_FALSE(r.converged()) << ipopt_status_name(r.ipopt_status);
+  EXPECT_NE(r.ipopt_status, 5);
+  // A result of the right shape is still returned.
+  EXPECT_EQ(r.point.z.size(), 1);
+  EXPECT_EQ(r.point.lambda.size(), 0);
+  EXPECT_EQ(r.point.z_lo.size(), 1);
+}
+
+// The Rosenbrock function with a slow gradient (10 ms per call).
+class SlowRosenbrock : public Nlp {
+ public:
+  explicit SlowRosenbrock(int sleep_ms) : sleep_ms_(sleep_ms) {
+    z_lo_ = Vector::Constant(2, -kInf);
+    z_hi_ = Vector::Constant(2, kInf);
+    hess_.add(0, 0);
+    hess_.add(1, 0);
+    hess_.add(1, 1);
+  }
+
+ private:
+  bool do_objective(const ConstVectorRef& x, double& f) const override {
+    f = 100 * std::pow(x[1] - x[0] * x[0], 2) + std::pow(1 - x[0], 2);
+    return true;
+  }
+  bool do_gradient(const ConstVectorRef& x, VectorRef g) const override {
+    if (sleep_ms_ > 0) std::this_thread::sleep_for(std::chrono::milliseconds(sleep_ms_));
+    g[0] = -400 * x[0] * (x[1] - x[0] * x[0]) - 2 * (1 - x[0]);
+    g[1] = 200 * (x[1] - x[0] * x[0]);
+    return true;
+  }
+  bool do_constraints(const ConstVectorRef&, VectorRef) const override { return true; }
+  bool do_jacobian(const ConstVectorRef&, VectorRef) const override { return true; }
+  bool do_hessian(const ConstVectorRef& x, double s, const ConstVectorRef&,
+                  VectorRef v) const override {
+    v[0] = s * (1200 * x[0] * x[0] - 400 * x[1] + 2);
+    v[1] = s * (-400 * x[0]);
+    v[2] = s * 200;
+    return true;
+  }
+  int sleep_ms_;
+};
+
+TEST(IpoptSolverSolve, WallLimitStopsALongSolve) {
+  IpoptSolver solver(disco_yaml_ipopt_options());
+  NlpPoint start;
+  start.z = (Vector(2) << -1.2, 1.0).finished();
+  // Unlimited (and fast): converges to (1, 1) after a good number of iterations.
+  const NlpResult full = solver.solve(SlowRosenbrock(0), start);
+  ASSERT_TRUE(full.converged()) << ipopt_status_name(full.ipopt_status);
+  EXPECT_NEAR(full.point.z[0], 1.0, 1e-6);
+  ASSERT_GE(full.iterations, 15);
+  // With 10 ms per gradient, a 40 ms limit allows only a few iterations.
+  const NlpResult cut = solver.solve(SlowRosenbrock(10), start, 0.04);
+  EXPECT_EQ(cut.ipopt_status, 5) << ipopt_status_name(cut.ipopt_status);
+  EXPECT_EQ(ipopt_status_name(cut.ipopt_status), "User_Requested_Stop");
+  EXPECT_FALSE(cut.converged());
+  EXPECT_LT(cut.iterations, full.iterations);
+  EXPECT_LT(cut.seconds, 0.5);
+  EXPECT_EQ(cut.point.z.size(), 2);
+  // The limit is per call: the same solver solves fully afterwards.
+  const NlpResult after = solver.solve(SlowRosenbrock(0), start);
+  EXPECT_TRUE(after.converged());
+}
+
+// Finding (see the report): NlpPoint::has_duals() is lambda.size() > 0, so
+// the bound multipliers of an NLP without constraint rows (e.g. the kPerPair
+// elastic NLP of an MPCC whose sides are all variables) never warm-start
+// Ipopt. From its own solution, such an NLP should converge at once, as it
+// does when a free dummy row is added (1 iteration instead of 3).
+TEST(IpoptSolverSolve, WarmStartUsesBoundMultipliersWithoutRows) {
+  // min (x + 1)^2 + (y - 2)^2, x >= 0: x* = 0 with bound multiplier 2.
+  auto make = [](bool dummy_row) {
+    PolynomialProgram p;
+    const Affine x = Affine::variable(0), y = Affine::variable(1);
+    p.add_variable(0.0, kInf, 1.0);
+    p.add_variable(-kInf, kInf, 0.0);
+    if (dummy_row) p.add(p.add_row(-kInf, kInf), 1.0, y);
+    p.add(PolynomialProgram::kObjective, 1.0, x + Affine(1.0), x + Affine(1.0));
+    p.add(PolynomialProgram::kObjective, 1.0, y - Affine(2.0), y - Affine(2.0));
+    p.finalize();
+    return p;
+  };
+  IpoptSolver solver(disco_yaml_ipopt_options());
+  for (bool dummy_row : {true, false}) {
+    SCOPED_TRACE(dummy_row ? "with a dummy row" : "without rows");
+    const auto p = make(dummy_row);
+    NlpPoint start;
+    start.z = p.initial_point();
+    const NlpResult cold = solver.solve(p, start);
+    ASSERT_TRUE(cold.converged());
+    EXPECT_NEAR(cold.point.z_lo[0], 2.0, 1e-6);
+    const NlpResult warm = solver.solve(p, cold.point);
+    ASSERT_TRUE(warm.converged());
+    EXPECT_LE(warm.iterations, 1);
+  }
+}
+
+}  // namespace
+}  // namespace disco

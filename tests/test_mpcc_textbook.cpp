@@ -1,0 +1,718 @@
+// Standard MPCC test problems with known optima, solved by ElasticSolver +
+// IpoptSolver (options of configs/disco.yaml), in both elastic formulations,
+// with and without polishing. Every reference optimum is recomputed here
+// independently of the solver (enumeration of complementarity branches, or
+// brute force over the upper-level variable with the lower level solved in
+// closed form), and the literature value is asserted against it as well.
+//
+// Problems:
+//   ScheelScholtes  min (x-1)^2 + (y-1)^2, 0 <= x _|_ y >= 0          f* = 1
+//   Ralph           min x^2 + y^2 - 4xy,  0 <= x _|_ y >= 0           f* = 0 (degenerate)
+//   Bard1           Bard (1988) bilevel, MacMPEC bard1                 f* = 17 at (1, 0)
+//   DeSilva         MacMPEC desilva (bilevel, degenerate at optimum)  f* = -1
+//   Gauvin          MacMPEC gauvin (bilevel, row sides only)          f* = 20 at (2, 14)
+//   ExpSqrt         hand-written, non-polynomial Mpcc (exp, sqrt, sin)
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <random>
+#include <cstdio>
+#include <algorithm>
+#include <sstream>
+#include <tuple>
+
+#include "core/elastic/elastic_solver.h"
+#include "core/nlp/derivative_checker.h"
+#include "core/nlp/polynomial_program.h"
+#include "core/util/numbers.h"
+#include "tests/test_support_mpcc.h"
+
+namespace disco {
+namespace {
+
+using test_support::disco_yaml_ipopt_options;
+using test_support::minimize_1d;
+using S = ComplementaritySide;
+
+Affine V(int k, double c = 1.0) { return Affine::variable(k, c); }
+
+// ------------------------------------------------------------ problems ---
+
+// The MPCC, its start point, and its reference optimum (value, point, and
+// which coordinates of the point are unique and hence compared).
+struct Problem {
+  std::unique_ptr<Mpcc> mpcc;
+  Vector start;
+  double f_ref = 0.0;
+  std::vector<Vector> z_refs;   // global minimizers (any one may be reached)
+  std::vector<int> compare;     // coordinates compared with z_refs
+  // Extra check on the solution, e.g. lower-level optimality of a bilevel
+  // program: returns the error.
+  std::function<double(const Vector&)> extra_error;
+};
+
+std::unique_ptr<PolynomialProgram> finalize(std::unique_ptr<PolynomialProgram> p) {
+  p->finalize();
+  return p;
+}
+
+// Scheel & Scholtes (2000): min (x-1)^2 + (y-1)^2, 0 <= x _|_ y >= 0.
+// Two global minimizers (1, 0) and (0, 1), f* = 1; start favours (1, 0).
+Problem scheel_scholtes() {
+  auto p = std::make_unique<PolynomialProgram>();
+  p->add_variable(-kInf, kInf, 1.0);
+  p->add_variable(-kInf, kInf, 0.2);
+  for (int k : {0, 1}) {
+    p->add(PolynomialProgram::kObjective, 1.0, V(k) - Affine(1.0), V(k) - Affine(1.0));
+  }
+  p->add_pair(S::variable(0), S::variable(1));
+  Problem out;
+  out.start = p->initial_point();
+  out.mpcc = finalize(std::move(p));
+  // Branch enumeration: x = 0 (y >= 0 free) or y = 0 (x >= 0 free).
+  auto f = [](double x, double y) { return (x - 1) * (x - 1) + (y - 1) * (y - 1); };
+  const auto [ya, fa] = minimize_1d([&](double y) { return f(0, y); }, 0.0, 10.0);
+  const auto [xb, fb] = minimize_1d([&](double x) { return f(x, 0); }, 0.0, 10.0);
+  out.f_ref = std::min(fa, fb);
+  if (fa <= out.f_ref + 1e-12) out.z_refs.push_back((Vector(2) << 0.0, ya).finished());
+  if (fb <= out.f_ref + 1e-12) out.z_refs.push_back((Vector(2) << xb, 0.0).finished());
+  out.compare = {0, 1};
+  return out;
+}
+
+// Ralph's degenerate example (MacMPEC ralph2): min x^2 + y^2 - 4xy,
+// 0 <= x _|_ y >= 0. f* = 0 at (0, 0), where both sides vanish.
+Problem ralph() {
+  auto p = std::make_unique<PolynomialProgram>();
+  p->add_variable(0.0, kInf, 1.0);
+  p->add_variable(0.0, kInf, 1.0);
+  p->add(PolynomialProgram::kObjective, 1.0, V(0), V(0));
+  p->add(PolynomialProgram::kObjective, 1.0, V(1), V(1));
+  p->add(PolynomialProgram::kObjective, -4.0, V(0), V(1));
+  p->add_pair(S::variable(0), S::variable(1));
+  Problem out;
+  out.start = p->initial_point();
+  out.mpcc = finalize(std::move(p));
+  auto f = [](double x, double y) { return x * x + y * y - 4 * x * y; };
+  const auto [ya, fa] = minimize_1d([&](double y) { return f(0, y); }, 0.0, 10.0);
+  const auto [xb, fb] = minimize_1d([&](double x) { return f(x, 0); }, 0.0, 10.0);
+  out.f_ref = std::min(fa, fb);
+  out.z_refs.push_back(Vector::Zero(2));
+  EXPECT_NEAR(ya, 0.0, 1e-7);
+  EXPECT_NEAR(xb, 0.0, 1e-7);
+  out.compare = {0, 1};
+  return out;
+}
+
+// Bard (1988), MacMPEC bard1, with the lower level's bound y >= 0 as a
+// fourth complementarity pair:
+//   min (x-5)^2 + (2y+1)^2
+//   y solves min_y (y-1)^2 - 1.5 x y  s.t. g1 = 3x - y - 3 >= 0,
+//            g2 = -x + 0.5y + 4 >= 0, g3 = -x - y + 7 >= 0, y >= 0.
+// KKT: 2(y-1) - 1.5x + l1 - 0.5 l2 + l3 - l4 = 0, 0 <= l_i _|_ g_i >= 0,
+// 0 <= l4 _|_ y >= 0. f* = 17 at (x, y) = (1, 0); the multipliers are not
+// unique there (l1 - l4 = 3.5), so only (x, y) is compared.
+// Variables: x, y, l1, l2, l3, l4.
+double bard1_lower_level(double x) {  // closed-form y*(x), NaN if infeasible
+  const double lo = std::max(0.0, 2 * x - 8);
+  double hi = std::min(3 * x - 3, 7 - x);
+  if (lo > hi + 1e-9) return std::nan("");  // (tolerance: x = 1 - 1e-16 is feasible enough)
+  hi = std::max(hi, lo);
+  return std::clamp(1 + 0.75 * x, lo, hi);  // convex 1-D QP: clamp the free minimizer
+}
+
+Problem bard1() {
+  auto p = std::make_unique<PolynomialProgram>();
+  const int x = p->add_variable(0.0, kInf, 1.5), y = p->add_variable(0.0, kInf, 1.0);
+  int l[4];
+  for (int i = 0; i < 4; ++i) l[i] = p->add_variable(-kInf, kInf, 0.0);
+  const int kkt = p->add_row(0, 0);
+  p->add(kkt, 1.0, 2.0 * V(y) - Affine(2.0) - 1.5 * V(x) + V(l[0]) - 0.5 * V(l[1]) + V(l[2]) -
+                       V(l[3]));
+  const int g1 = p->add_row(-kInf, kInf), g2 = p->add_row(-kInf, kInf),
+            g3 = p->add_row(-kInf, kInf);
+  p->add(g1, 1.0, 3.0 * V(x) - V(y) - Affine(3.0));
+  p->add(g2, 1.0, -1.0 * V(x) + 0.5 * V(y) + Affine(4.0));
+  p->add(g3, 1.0, -1.0 * V(x) - V(y) + Affine(7.0));
+  p->add(PolynomialProgram::kObjective, 1.0, V(x) - Affine(5.0), V(x) - Affine(5.0));
+  p->add(PolynomialProgram::kObjective, 1.0, 2.0 * V(y) + Affine(1.0), 2.0 * V(y) + Affine(1.0));
+  p->add_pair(S::row(g1), S::variable(l[0]));
+  p->add_pair(S::row(g2), S::variable(l[1]));
+  p->add_pair(S::row(g3), S::variable(l[2]));
+  p->add_pair(S::variable(y), S::variable(l[3]));
+  Problem out;
+  out.start = p->initial_point();
+  out.mpcc = finalize(std::move(p));
+  // Brute force over x with the lower level in closed form.
+  auto F = [](double xv) {
+    const double yv = bard1_lower_level(xv);
+    if (std::isnan(yv)) return kInf;
+    return (xv - 5) * (xv - 5) + (2 * yv + 1) * (2 * yv + 1);
+  };
+  const auto [xs, fs] = minimize_1d(F, 0.0, 10.0);
+  out.f_ref = fs;
+  EXPECT_NEAR(fs, 17.0, 1e-9) << "literature value (MacMPEC bard1)";
+  EXPECT_NEAR(xs, 1.0, 1e-7);
+  Vector zr = Vector::Zero(6);
+  zr[0] = xs;
+  zr[1] = bard1_lower_level(xs);
+  out.z_refs.push_back(zr);
+  out.compare = {0, 1};
+  out.extra_error = [](const Vector& z) { return std::abs(z[1] - bard1_lower_level(z[0])); };
+  return out;
+}
+
+// MacMPEC desilva (DeSilva, 1978):
+//   min x1^2 - 2x1 + x2^2 - 2x2 + y1^2 + y2^2,  0 <= x <= 2,
+//   y_i solves min (y_i - x_i)^2 s.t. 0.25 - (y_i - 1)^2 >= 0,
+// KKT: 2y_i - 2x_i + 2(y_i - 1) l_i = 0, 0 <= 0.25 - (y_i - 1)^2 _|_ l_i >= 0.
+// f* = -1 at x = y = (0.5, 0.5), l = 0: both sides of each pair vanish.
+// Variables: x1, x2, y1, y2, l1, l2.
+Problem desilva() {
+  auto p = std::make_unique<PolynomialProgram>();
+  for (int i = 0; i < 2; ++i) p->add_variable(0.0, 2.0, 1.0 + 0.2 * i);
+  for (int i = 0; i < 2; ++i) p->add_variable(-kInf, kInf, 1.0 + 0.2 * i);
+  for (int i = 0; i < 2; ++i) p->add_variable(-kInf, kInf, 0.1);
+  for (int i = 0; i < 2; ++i) {
+    const int x = i, y = 2 + i, l = 4 + i;
+    p->add(PolynomialProgram::kObjective, 1.0, V(x), V(x) - Affine(2.0));
+    p->add(PolynomialProgram::kObjective, 1.0, V(y), V(y));
+    const int kkt = p->add_row(0, 0);
+    p->add(kkt, 1.0, 2.0 * V(y) - 2.0 * V(x));
+    p->add(kkt, 2.0, V(y) - Affine(1.0), V(l));
+    const int side = p->add_row(-kInf, kInf);
+    p->add(side, 1.0, Affine(0.25));
+    p->add(side, -1.0, V(y) - Affine(1.0), V(y) - Affine(1.0));
+    p->add_pair(S::row(side), S::variable(l));
+  }
+  Problem out;
+  out.start = p->initial_point();
+  out.mpcc = finalize(std::move(p));
+  // Separable: brute force over each x_i with y_i = clamp(x_i, 0.5, 1.5).
+  auto g = [](double x) {
+    const double y = std::clamp(x, 0.5, 1.5);
+    return x * x - 2 * x + y * y;
+  };
+  const auto [xs, gs] = minimize_1d(g, 0.0, 2.0);
+  out.f_ref = 2 * gs;
+  EXPECT_NEAR(out.f_ref, -1.0, 1e-9) << "literature value (MacMPEC desilva)";
+  Vector zr(6);
+  zr << xs, xs, std::clamp(xs, 0.5, 1.5), std::clamp(xs, 0.5, 1.5), 0.0, 0.0;
+  out.z_refs.push_back(zr);
+  out.compare = {0, 1, 2, 3, 4, 5};
+  out.extra_error = [](const Vector& z) {
+    return std::max(std::abs(z[2] - std::clamp(z[0], 0.5, 1.5)),
+                    std::abs(z[3] - std::clamp(z[1], 0.5, 1.5)));
+  };
+  return out;
+}
+
+// MacMPEC gauvin (Gauvin & Savard 1992):
+//   min x^2 + (y-10)^2,  0 <= x <= 15,
+//   0 <= 4(x + 2y - 30) + u _|_ y >= 0,   0 <= 20 - x - y _|_ u >= 0.
+// (y minimizes (x + 2y - 30)^2 over 0 <= y <= 20 - x.) f* = 20 at (2, 14, 0).
+// Variables: x, y, u. Start from the MacMPEC data (x = 7.5, u = 1).
+Problem gauvin() {
+  auto p = std::make_unique<PolynomialProgram>();
+  const int x = p->add_variable(0.0, 15.0, 7.5), y = p->add_variable(0.0, kInf, 0.0),
+            u = p->add_variable(0.0, kInf, 1.0);
+  const int fy = p->add_row(-kInf, kInf), fu = p->add_row(-kInf, kInf);
+  p->add(fy, 4.0, V(x) + 2.0 * V(y) - Affine(30.0));
+  p->add(fy, 1.0, V(u));
+  p->add(fu, 1.0, Affine(20.0) - V(x) - V(y));
+  p->add(PolynomialProgram::kObjective, 1.0, V(x), V(x));
+  p->add(PolynomialProgram::kObjective, 1.0, V(y) - Affine(10.0), V(y) - Affine(10.0));
+  p->add_pair(S::row(fy), S::variable(y));
+  p->add_pair(S::row(fu), S::variable(u));
+  Problem out;
+  out.start = p->initial_point();
+  out.mpcc = finalize(std::move(p));
+  auto lower = [](double xv) { return std::clamp((30 - xv) / 2, 0.0, 20 - xv); };
+  auto F = [&](double xv) {
+    const double yv = lower(xv);
+    return xv * xv + (yv - 10) * (yv - 10);
+  };
+  const auto [xs, fs] = minimize_1d(F, 0.0, 15.0);
+  out.f_ref = fs;
+  EXPECT_NEAR(fs, 20.0, 1e-9) << "literature value (MacMPEC gauvin)";
+  out.z_refs.push_back((Vector(3) << xs, lower(xs), 0.0).finished());
+  out.compare = {0, 1, 2};
+  out.extra_error = [lower](const Vector& z) { return std::abs(z[1] - lower(z[0])); };
+  return out;
+}
+
+// A hand-written, non-polynomial MPCC (exact derivatives by hand):
+//   min  f = (x-1)^2 + sqrt(1 + (y-2)^2) + 0.1 x sin(y)
+//   s.t. c1 = sqrt(1 + x^2 + y^2) <= 3,
+//        0 <= x _|_ c0 = exp(y) - 3 >= 0.
+// Branch x = 0: f = 1 + sqrt(1 + (y-2)^2), y >= ln 3: min 2 at y = 2.
+// Branch c0 = 0: y = ln 3, f convex in x >= 0: x* = 1 - 0.05 sin(ln 3),
+// f* = sqrt(1 + (2 - ln 3)^2) + 0.1 sin(ln 3) - 0.0025 sin^2(ln 3) = 1.43337.
+class ExpSqrtMpcc : public Mpcc {
+ public:
+  ExpSqrtMpcc() {
+    z_lo_ = (Vector(2) << -10.0, -10.0).finished();
+    z_hi_ = (Vector(2) << 10.0, 10.0).finished();
+    c_lo_ = (Vector(2) << -kInf, -kInf).finished();
+    c_hi_ = (Vector(2) << kInf, 3.0).finished();
+    jac_.add(0, 1);
+    jac_.add(1, 0);
+    jac_.add(1, 1);
+    hess_.add(0, 0);
+    hess_.add(1, 0);
+    hess_.add(1, 1);
+    pairs_.push_back({S::variable(0), S::row(0)});
+  }
+  static double f(double x, double y) {
+    return (x - 1) * (x - 1) + std::sqrt(1 + (y - 2) * (y - 2)) + 0.1 * x * std::sin(y);
+  }
+
+ private:
+  bool do_objective(const ConstVectorRef& z, double& out) const override {
+    out = f(z[0], z[1]);
+    return true;
+  }
+  bool do_gradient(const ConstVectorRef& z, VectorRef g) const override {
+    const double x = z[0], y = z[1], q = std::sqrt(1 + (y - 2) * (y - 2));
+    g[0] = 2 * (x - 1) + 0.1 * std::sin(y);
+    g[1] = (y - 2) / q + 0.1 * x * std::cos(y);
+    return true;
+  }
+  bool do_constraints(const ConstVectorRef& z, VectorRef c) const override {
+    c[0] = std::exp(z[1]) - 3;
+    c[1] = std::sqrt(1 + z[0] * z[0] + z[1] * z[1]);
+    return true;
+  }
+  bool do_jacobian(const ConstVectorRef& z, VectorRef v) const override {
+    const double r = std::sqrt(1 + z[0] * z[0] + z[1] * z[1]);
+    v[0] = std::exp(z[1]);
+    v[1] = z[0] / r;
+    v[2] = z[1] / r;
+    return true;
+  }
+  bool do_hessian(const ConstVectorRef& z, double sigma, const ConstVectorRef& lambda,
+                  VectorRef v) const override {
+    const double x = z[0], y = z[1], q = std::sqrt(1 + (y - 2) * (y - 2));
+    const double r = std::sqrt(1 + x * x + y * y), r3 = r * r * r;
+    v[0] = sigma * 2.0 + lambda[1] * (1 + y * y) / r3;
+    v[1] = sigma * 0.1 * std::cos(y) - lambda[1] * x * y / r3;
+    v[2] = sigma * (1 / (q * q * q) - 0.1 * x * std::sin(y)) + lambda[0] * std::exp(y) +
+           lambda[1] * (1 + x * x) / r3;
+    return true;
+  }
+};
+
+// Reference for ExpSqrtMpcc with x <= x_max, by branch enumeration.
+std::pair<double, Vector> exp_sqrt_reference(double x_max) {
+  const double ln3 = std::log(3.0);
+  const auto [ya, fa] =
+      minimize_1d([](double y) { return ExpSqrtMpcc::f(0.0, y); }, ln3, 10.0);  // x = 0
+  const auto [xb, fb] =
+      minimize_1d([&](double x) { return ExpSqrtMpcc::f(x, ln3); }, 0.0, x_max);  // c0 = 0
+  if (fa < fb) return {fa, (Vector(2) << 0.0, ya).finished()};
+  return {fb, (Vector(2) << xb, ln3).finished()};
+}
+
+Problem exp_sqrt() {
+  Problem out;
+  out.mpcc = std::make_unique<ExpSqrtMpcc>();
+  out.start = (Vector(2) << 1.0, 1.0).finished();  // exp(1) - 3 < 0: favours c0 = 0
+  const auto [fr, zr] = exp_sqrt_reference(10.0);
+  out.f_ref = fr;
+  out.z_refs.push_back(zr);
+  // Closed form of the winning branch.
+  const double s = std::sin(std::log(3.0)), q = std::sqrt(1 + std::pow(2 - std::log(3.0), 2));
+  EXPECT_NEAR(fr, q + 0.1 * s - 0.0025 * s * s, 1e-12);
+  EXPECT_NEAR(zr[0], 1 - 0.05 * s, 1e-7);
+  out.compare = {0, 1};
+  return out;
+}
+
+enum class ProblemId { kScheelScholtes, kRalph, kBard1, kDeSilva, kGauvin, kExpSqrt };
+
+Problem make_problem(ProblemId id) {
+  switch (id) {
+    case ProblemId::kScheelScholtes: return scheel_scholtes();
+    case ProblemId::kRalph: return ralph();
+    case ProblemId::kBard1: return bard1();
+    case ProblemId::kDeSilva: return desilva();
+    case ProblemId::kGauvin: return gauvin();
+    case ProblemId::kExpSqrt: return exp_sqrt();
+  }
+  return scheel_scholtes();
+}
+
+std::string problem_name(ProblemId id) {
+  switch (id) {
+    case ProblemId::kScheelScholtes: return "ScheelScholtes";
+    case ProblemId::kRalph: return "Ralph";
+    case ProblemId::kBard1: return "Bard1";
+    case ProblemId::kDeSilva: return "DeSilva";
+    case ProblemId::kGauvin: return "Gauvin";
+    case ProblemId::kExpSqrt: return "ExpSqrt";
+  }
+  return "?";
+}
+
+// ------------------------------------------------------------- helpers ---
+
+// Independent certificate (does not use disco::certify).
+struct MyCertificate {
+  double violation = 0.0, complementarity = 0.0;
+};
+MyCertificate my_certificate(const Mpcc& m, const Vector& z) {
+  MyCertificate out;
+  Vector c(m.num_constraints());
+  EXPECT_TRUE(m.constraints(z, c));
+  for (int k = 0; k < z.size(); ++k) {
+    out.violation = std::max(out.violation, m.variable_lower()[k] - z[k]);
+    out.violation = std::max(out.violation, z[k] - m.variable_upper()[k]);
+  }
+  for (int r = 0; r < c.size(); ++r) {
+    out.violation = std::max(out.violation, m.constraint_lower()[r] - c[r]);
+    out.violation = std::max(out.violation, c[r] - m.constraint_upper()[r]);
+  }
+  for (const auto& p : m.complementarity_pairs()) {
+    auto val = [&](const S& s) { return s.kind == S::Kind::kVariable ? z[s.index] : c[s.index]; };
+    const double g = val(p.g), h = val(p.h);
+    out.violation = std::max({out.violation, -g, -h});  // sides must be >= 0
+    out.complementarity = std::max(out.complementarity, std::abs(std::min(g, h)));
+  }
+  return out;
+}
+
+std::string describe(const MpccResult& r) {
+  std::ostringstream s;
+  s << "status " << to_string(r.status) << " ipopt " << r.ipopt_status << " ("
+    << ipopt_status_name(r.ipopt_status) << ") f " << r.objective << " viol "
+    << r.certificate.max_violation << " compl " << r.certificate.max_complementarity << " zeta "
+    << r.zeta << " solves " << r.nlp_solves << " iters " << r.iterations << " polished "
+    << r.polished << " z [" << r.z.transpose() << "]";
+  return s.str();
+}
+
+void expect_solved_to_reference(const Problem& pb, const MpccResult& r) {
+  SCOPED_TRACE(describe(r));
+  ASSERT_EQ(r.status, MpccStatus::kSolved);
+  EXPECT_TRUE(r.solved());
+  EXPECT_LE(r.certificate.max_violation, 1e-6);
+  EXPECT_LE(r.certificate.max_complementarity, 1e-6);
+  const auto mine = my_certificate(*pb.mpcc, r.z);
+  EXPECT_LE(mine.violation, 1e-6);
+  EXPECT_LE(mine.complementarity, 1e-6);
+  double f = 0.0;
+  ASSERT_TRUE(pb.mpcc->objective(r.z, f));
+  EXPECT_NEAR(r.objective, f, 1e-12);
+  EXPECT_NEAR(r.objective, pb.f_ref, 1e-6);
+  // Close to one of the reference minimizers.
+  double best = kInf;
+  for (const auto& zr : pb.z_refs) {
+    double d = 0.0;
+    for (int k : pb.compare) d = std::max(d, std::abs(r.z[k] - zr[k]));
+    best = std::min(best, d);
+  }
+  EXPECT_LE(best, 1e-4);
+  if (pb.extra_error) {
+    EXPECT_LE(pb.extra_error(r.z), 1e-6);
+  }
+}
+
+ElasticSettings settings_for(ElasticFormulation form, bool polish) {
+  ElasticSettings s;
+  s.formulation = form;
+  s.polish = polish;
+  return s;
+}
+
+std::string mode_name(ElasticFormulation form, bool polish) {
+  return std::string(form == ElasticFormulation::kLumped ? "Lumped" : "PerPair") +
+         (polish ? "Polish" : "NoPolish");
+}
+
+// ---------------------------------------------------------------- tests ---
+
+using Mode = std::tuple<ProblemId, ElasticFormulation, bool>;
+
+class MpccTextbook : public ::testing::TestWithParam<Mode> {};
+
+TEST_P(MpccTextbook, SolvesToKnownOptimum) {
+  const auto [id, form, polish] = GetParam();
+  const Problem pb = make_problem(id);
+  IpoptSolver ipopt(disco_yaml_ipopt_options());
+  ElasticSolver solver(ipopt, settings_for(form, polish));
+  const MpccResult r = solver.solve(*pb.mpcc, pb.start);
+  expect_solved_to_reference(pb, r);
+  if (!polish) {
+    EXPECT_FALSE(r.polished);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Textbook, MpccTextbook,
+    ::testing::Combine(::testing::Values(ProblemId::kScheelScholtes, ProblemId::kRalph,
+                                         ProblemId::kBard1, ProblemId::kDeSilva,
+                                         ProblemId::kGauvin, ProblemId::kExpSqrt),
+                       ::testing::Values(ElasticFormulation::kLumped,
+                                         ElasticFormulation::kPerPair),
+                       ::testing::Bool()),
+    [](const ::testing::TestParamInfo<Mode>& info) {
+      return problem_name(std::get<0>(info.param)) + "_" +
+             mode_name(std::get<1>(info.param), std::get<2>(info.param));
+    });
+
+// The hand-written MPCC's derivatives are right (else the solve above
+// proves little), alone and inside both elastic formulations.
+TEST(MpccTextbookExpSqrt, HandDerivativesMatchFiniteDifferences) {
+  const ExpSqrtMpcc m;
+  std::mt19937 rng(5);
+  for (int trial = 0; trial < 10; ++trial) {
+    const Vector z = test_support::random_vector(rng, 2, -2.0, 2.0);
+    const Vector lambda = test_support::random_vector(rng, 2, -2.0, 2.0);
+    const auto rep = check_derivatives(m, z, 0.7, lambda);
+    ASSERT_TRUE(rep.evaluated);
+    EXPECT_LT(rep.gradient_error, 1e-6);
+    EXPECT_LT(rep.jacobian_error, 1e-6);
+    EXPECT_LT(rep.hessian_error, 1e-6);
+    EXPECT_EQ(rep.jacobian_outside, 0.0);
+    EXPECT_EQ(rep.hessian_outside, 0.0);
+    for (auto form : {ElasticFormulation::kLumped, ElasticFormulation::kPerPair}) {
+      const ElasticNlp e(m, form, 13.0);
+      const Vector x = test_support::random_vector(rng, e.num_variables(), -2.0, 2.0);
+      const Vector l = test_support::random_vector(rng, e.num_constraints(), -2.0, 2.0);
+      const auto re = check_derivatives(e, x, 1.3, l);
+      ASSERT_TRUE(re.evaluated);
+      EXPECT_LT(re.gradient_error, 1e-6);
+      EXPECT_LT(re.jacobian_error, 1e-6);
+      EXPECT_LT(re.hessian_error, 1e-6);
+      EXPECT_EQ(re.jacobian_outside, 0.0);
+      EXPECT_EQ(re.hessian_outside, 0.0);
+    }
+  }
+}
+
+// ------------------------------------------------- infeasible MPCCs ---
+
+class MpccInfeasible : public ::testing::TestWithParam<std::tuple<ElasticFormulation, bool>> {};
+
+// 0 <= x _|_ y >= 0 with x >= 1, y >= 1: the elastic NLP is feasible, but
+// complementarity can never be tight.
+TEST_P(MpccInfeasible, ComplementarityCannotBeTight) {
+  const auto [form, polish] = GetParam();
+  PolynomialProgram p;
+  p.add_variable(1.0, kInf, 1.5);
+  p.add_variable(1.0, kInf, 1.5);
+  for (int k : {0, 1}) p.add(PolynomialProgram::kObjective, 1.0, V(k) - Affine(2.0), V(k) - Affine(2.0));
+  p.add_pair(S::variable(0), S::variable(1));
+  p.finalize();
+  IpoptSolver ipopt(disco_yaml_ipopt_options());
+  ElasticSolver solver(ipopt, settings_for(form, polish));
+  const MpccResult r = solver.solve(p, p.initial_point());
+  SCOPED_TRACE(describe(r));
+  EXPECT_FALSE(r.solved());
+  EXPECT_TRUE(r.status == MpccStatus::kElasticNotTight || r.status == MpccStatus::kInfeasible);
+  EXPECT_GE(r.certificate.max_complementarity, 1.0 - 1e-6);  // honest certificate
+  EXPECT_FALSE(r.polished);
+}
+
+// 0 <= x _|_ y >= 0 with the row x + y <= -1: even the elastic NLP is infeasible.
+TEST_P(MpccInfeasible, ConstraintsCannotBeMet) {
+  const auto [form, polish] = GetParam();
+  PolynomialProgram p;
+  p.add_variable(-kInf, kInf, 0.5);
+  p.add_variable(-kInf, kInf, 0.5);
+  const int r0 = p.add_row(-kInf, -1.0);
+  p.add(r0, 1.0, V(0) + V(1));
+  p.add(PolynomialProgram::kObjective, 1.0, V(0), V(1));
+  p.add(PolynomialProgram::kObjective, 1.0, V(0) - Affine(1.0));
+  p.add_pair(S::variable(0), S::variable(1));
+  p.finalize();
+  IpoptSolver ipopt(disco_yaml_ipopt_options());
+  ElasticSolver solver(ipopt, settings_for(form, polish));
+  const MpccResult r = solver.solve(p, p.initial_point());
+  SCOPED_TRACE(describe(r));
+  EXPECT_FALSE(r.solved());
+  EXPECT_TRUE(r.status == MpccStatus::kElasticNotTight || r.status == MpccStatus::kInfeasible);
+  EXPECT_GT(r.certificate.max_violation, 0.5);
+}
+
+INSTANTIATE_TEST_SUITE_P(Textbook, MpccInfeasible,
+                         ::testing::Combine(::testing::Values(ElasticFormulation::kLumped,
+                                                              ElasticFormulation::kPerPair),
+                                            ::testing::Bool()),
+                         [](const auto& info) {
+                           return mode_name(std::get<0>(info.param), std::get<1>(info.param));
+                         });
+
+// ------------------------------------------------------ the zeta rule ---
+
+// min (x-1)^2 + (y-4)^2, 0 <= x _|_ y >= 0. Branches: x = 0 -> (0, 4), f = 1;
+// y = 0 -> (1, 0), f = 16. The elastic objective f + zeta x y has the MPCC
+// solution (0, 4) as its minimizer only for zeta > 1/2 (d/dx at (0, 4) is
+// -2 + 4 zeta); below, the penalty is outweighed by the gain in f and the
+// elastic minimizer has x, y > 0. (1, 0) would need zeta >= 8.
+PolynomialProgram zeta_problem() {
+  PolynomialProgram p;
+  p.add_variable(-kInf, kInf, 0.5);
+  p.add_variable(-kInf, kInf, 3.0);
+  p.add(PolynomialProgram::kObjective, 1.0, V(0) - Affine(1.0), V(0) - Affine(1.0));
+  p.add(PolynomialProgram::kObjective, 1.0, V(1) - Affine(4.0), V(1) - Affine(4.0));
+  p.add_pair(S::variable(0), S::variable(1));
+  p.finalize();
+  return p;
+}
+
+class MpccZetaRule : public ::testing::TestWithParam<std::tuple<ElasticFormulation, bool>> {};
+
+// A stall_change that never triggers the stall rule.
+constexpr double kNoStall = -1.0;
+
+void expect_zeta_raised_and_solved(const ElasticSettings& s, const MpccResult& r) {
+  SCOPED_TRACE(describe(r));
+  ASSERT_EQ(r.status, MpccStatus::kSolved);
+  EXPECT_GT(r.zeta, s.zeta);
+  EXPECT_GE(r.zeta, 0.5);      // below 1/2 the elastic solution is not complementary
+  EXPECT_GE(r.nlp_solves, 4);  // 1e-3, 1e-2, 1e-1 were all too small
+  EXPECT_LE(r.certificate.max_complementarity, 1e-6);
+  EXPECT_LE(r.certificate.max_violation, 1e-6);
+  EXPECT_NEAR(r.objective, 1.0, 1e-6);
+  EXPECT_NEAR(r.z[0], 0.0, 1e-4);
+  EXPECT_NEAR(r.z[1], 4.0, 1e-4);
+}
+
+// The raising mechanism itself: 1e-3 -> 1e-2 -> 1e-1 -> 1, solved at 1.
+// (The elastic residual max|min(x, y)| is 0.998, 0.980, 0.802, then 0: the
+// exact penalty has a threshold, it does not shrink the residual gradually.)
+TEST_P(MpccZetaRule, RaisesZetaUntilTight) {
+  const auto [form, polish] = GetParam();
+  const auto p = zeta_problem();
+  ElasticSettings s = settings_for(form, polish);
+  s.zeta = 1e-3;
+  s.zeta_factor = 10.0;
+  s.stall_change = kNoStall;
+  IpoptSolver ipopt(disco_yaml_ipopt_options());
+  ElasticSolver solver(ipopt, s);
+  expect_zeta_raised_and_solved(s, solver.solve(p, p.initial_point()));
+}
+
+// The same with the default stall_change: an MPCC that is solved at zeta = 1
+// must not be given up at zeta = 1e-2 because the residual only fell from
+// 0.998 to 0.980 (see the report: the stall rule contradicts the threshold
+// behaviour of the exact penalty).
+TEST_P(MpccZetaRule, RaisesZetaUntilTightWithDefaultStallRatio) {
+  const auto [form, polish] = GetParam();
+  const auto p = zeta_problem();
+  ElasticSettings s = settings_for(form, polish);
+  s.zeta = 1e-3;
+  s.zeta_factor = 10.0;
+  IpoptSolver ipopt(disco_yaml_ipopt_options());
+  ElasticSolver solver(ipopt, s);
+  expect_zeta_raised_and_solved(s, solver.solve(p, p.initial_point()));
+}
+
+TEST_P(MpccZetaRule, ReportsNotTightWhenZetaMaxIsTooSmall) {
+  const auto [form, polish] = GetParam();
+  const auto p = zeta_problem();
+  ElasticSettings s = settings_for(form, polish);
+  s.zeta = 1e-3;
+  s.zeta_factor = 10.0;
+  s.zeta_max = 0.05;  // the problem needs zeta > 0.5
+  s.stall_change = kNoStall;  // so that zeta_max, and only it, stops the raising
+  IpoptSolver ipopt(disco_yaml_ipopt_options());
+  ElasticSolver solver(ipopt, s);
+  const MpccResult r = solver.solve(p, p.initial_point());
+  SCOPED_TRACE(describe(r));
+  EXPECT_EQ(r.status, MpccStatus::kElasticNotTight);
+  EXPECT_FALSE(r.solved());
+  EXPECT_FALSE(r.polished);
+  EXPECT_DOUBLE_EQ(r.zeta, 1e-2);  // 1e-3, 1e-2; 1e-1 would exceed zeta_max
+  EXPECT_EQ(r.nlp_solves, 2);
+  EXPECT_GT(r.certificate.max_complementarity, s.complementarity_tol);  // honest
+  EXPECT_NEAR(r.certificate.max_complementarity, 0.98, 0.01);
+}
+
+// Where the stall rule is right: complementarity cannot be tight (x, y >= 1),
+// the residual stays 1, and the raising stops after one raise instead of
+// running up to zeta_max.
+TEST_P(MpccZetaRule, StallRuleStopsEarlyWhenTheResidualDoesNotMove) {
+  const auto [form, polish] = GetParam();
+  PolynomialProgram p;
+  p.add_variable(1.0, kInf, 1.5);
+  p.add_variable(1.0, kInf, 1.5);
+  for (int k : {0, 1}) {
+    p.add(PolynomialProgram::kObjective, 1.0, V(k) - Affine(2.0), V(k) - Affine(2.0));
+  }
+  p.add_pair(S::variable(0), S::variable(1));
+  p.finalize();
+  IpoptSolver ipopt(disco_yaml_ipopt_options());
+  ElasticSettings s = settings_for(form, polish);  // zeta 10, factor 10, max 1e6
+  const MpccResult stalled = ElasticSolver(ipopt, s).solve(p, p.initial_point());
+  s.stall_change = kNoStall;
+  const MpccResult full = ElasticSolver(ipopt, s).solve(p, p.initial_point());
+  SCOPED_TRACE("stall: " + describe(stalled) + "\nno stall: " + describe(full));
+  EXPECT_EQ(stalled.status, MpccStatus::kElasticNotTight);
+  EXPECT_EQ(full.status, MpccStatus::kElasticNotTight);
+  EXPECT_EQ(stalled.nlp_solves, 2);
+  EXPECT_EQ(full.nlp_solves, 6);  // zeta = 10, 100, ..., 1e6
+  EXPECT_DOUBLE_EQ(full.zeta, 1e6);
+}
+
+INSTANTIATE_TEST_SUITE_P(Textbook, MpccZetaRule,
+                         ::testing::Combine(::testing::Values(ElasticFormulation::kLumped,
+                                                              ElasticFormulation::kPerPair),
+                                            ::testing::Bool()),
+                         [](const auto& info) {
+                           return mode_name(std::get<0>(info.param), std::get<1>(info.param));
+                         });
+
+// ------------------------------------------------------- warm starts ---
+
+class MpccWarmStart : public ::testing::TestWithParam<std::tuple<ElasticFormulation, bool>> {};
+
+TEST_P(MpccWarmStart, AfterTighteningABound) {
+  const auto [form, polish] = GetParam();
+  ExpSqrtMpcc m;
+  IpoptSolver ipopt(disco_yaml_ipopt_options());
+  ElasticSolver solver(ipopt, settings_for(form, polish));
+  const MpccResult first = solver.solve(m, (Vector(2) << 1.0, 1.0).finished());
+  ASSERT_EQ(first.status, MpccStatus::kSolved) << describe(first);
+
+  // Tighten x <= 0.7: the optimum moves to (0.7, ln 3).
+  m.set_variable_bounds(0, -10.0, 0.7);
+  const auto [f_ref, z_ref] = exp_sqrt_reference(0.7);
+  EXPECT_NEAR(z_ref[0], 0.7, 1e-9);
+  const MpccResult warm = solver.solve(m, first);
+  const MpccResult cold = solver.solve(m, first.z);
+  const std::string msg = "warm: " + describe(warm) + "\ncold: " + describe(cold);
+  RecordProperty("warm_iterations", warm.iterations);
+  RecordProperty("cold_iterations", cold.iterations);
+  std::printf("[ warm start ] %s: warm %d iterations (%d NLP solves), cold %d (%d)\n",
+              mode_name(form, polish).c_str(), warm.iterations, warm.nlp_solves, cold.iterations,
+              cold.nlp_solves);
+  for (const MpccResult* r : {&warm, &cold}) {
+    ASSERT_EQ(r->status, MpccStatus::kSolved) << msg;
+    EXPECT_NEAR(r->objective, f_ref, 1e-6) << msg;
+    EXPECT_NEAR(r->z[0], z_ref[0], 1e-4) << msg;
+    EXPECT_NEAR(r->z[1], z_ref[1], 1e-4) << msg;
+  }
+  // Asserted without polishing only: a polished result carries zero bound
+  // multipliers for the sides it fixed (Ipopt 3.11 reports none for fixed
+  // variables), so its warm start is not reliably better than a cold one
+  // (see the report).
+  if (!polish) {
+    EXPECT_LE(warm.iterations, cold.iterations) << msg;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Textbook, MpccWarmStart,
+                         ::testing::Combine(::testing::Values(ElasticFormulation::kLumped,
+                                                              ElasticFormulation::kPerPair),
+                                            ::testing::Bool()),
+                         [](const auto& info) {
+                           return mode_name(std::get<0>(info.param), std::get<1>(info.param));
+                         });
+
+}  // namespace
+}  // namespace disco

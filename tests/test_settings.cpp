@@ -1,0 +1,233 @@
+// Tests for the solver settings (core/config/settings.h).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "core/config/settings.h"
+#include "core/util/errors.h"
+
+namespace disco {
+namespace {
+
+const char* const kFile = "disco.yaml";
+
+// Line numbers below refer to this text (1-based).
+const char* const kText = R"(# solver settings
+ipopt:
+  sb: "yes"
+  print_level: 0
+  tol: 1.0e-9
+elastic:
+  zeta: 10.0
+  polish: true
+  formulation: lumped
+  rounds: 7
+  limit: .inf
+  label: "7"
+empty:
+list: [1, 2]
+)";
+
+Settings make() { return Settings::parse(kText, kFile); }
+
+// Runs `f`, which must throw InputError; returns the message.
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    return std::string("wrong exception type: ") + e.what();
+  }
+  return "no exception";
+}
+
+void expect_prefix(const std::string& msg, const std::string& prefix, const std::string& fragment) {
+  EXPECT_EQ(msg.rfind(prefix, 0), 0u) << "expected prefix: " << prefix << "\n     got: " << msg;
+  EXPECT_NE(msg.find(fragment), std::string::npos)
+      << "expected fragment: " << fragment << "\n     got: " << msg;
+}
+
+std::string temp_path(const std::string& name) {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  return (std::filesystem::temp_directory_path() /
+          ("disco_" + std::string(info->name()) + "_" + name))
+      .string();
+}
+
+TEST(Settings, TypedValues) {
+  const Settings s = make();
+  EXPECT_EQ(s.source(), kFile);
+  EXPECT_DOUBLE_EQ(s.number("elastic.zeta"), 10.0);
+  EXPECT_DOUBLE_EQ(s.number("ipopt.tol"), 1e-9);
+  EXPECT_DOUBLE_EQ(s.number("elastic.rounds"), 7.0);
+  EXPECT_EQ(s.number("elastic.limit"), HUGE_VAL);
+  EXPECT_EQ(s.integer("elastic.rounds"), 7);
+  EXPECT_EQ(s.integer("list.1"), 2);
+  EXPECT_TRUE(s.boolean("elastic.polish"));
+  EXPECT_EQ(s.text("elastic.formulation"), "lumped");
+  EXPECT_EQ(s.text("elastic.label"), "7");
+  EXPECT_EQ(s.text("ipopt.sb"), "yes");
+}
+
+TEST(Settings, TypeErrors) {
+  const Settings s = make();
+  expect_prefix(error_of([&] { s.integer("elastic.zeta"); }),
+                "disco.yaml:7: key 'elastic.zeta': ", "must be an integer (got '10.0')");
+  expect_prefix(error_of([&] { s.number("elastic.formulation"); }),
+                "disco.yaml:9: key 'elastic.formulation': ", "must be a number");
+  expect_prefix(error_of([&] { s.number("elastic.label"); }),
+                "disco.yaml:12: key 'elastic.label': ", "quoted string");
+  expect_prefix(error_of([&] { s.boolean("elastic.formulation"); }),
+                "disco.yaml:9: key 'elastic.formulation': ", "true or false");
+  expect_prefix(error_of([&] { s.number("elastic"); }),
+                "disco.yaml:7: key 'elastic': ", "got a mapping");
+  expect_prefix(error_of([&] { s.text("list"); }), "disco.yaml:14: key 'list': ", "got a sequence");
+  expect_prefix(error_of([&] { s.number("elastic.missing"); }),
+                "disco.yaml:7: key 'elastic.missing': ", "missing");
+  expect_prefix(error_of([&] { s.number("nothing.here"); }),
+                "disco.yaml: key 'nothing.here': ", "missing");
+}
+
+TEST(Settings, Section) {
+  const Settings s = make();
+  const std::vector<Settings::Entry> e = s.section("ipopt");
+  ASSERT_EQ(e.size(), 3u);
+  EXPECT_EQ(e[0].name, "sb");
+  EXPECT_EQ(e[0].value, "yes");
+  EXPECT_EQ(e[0].line, 3);
+  EXPECT_EQ(e[1].name, "print_level");
+  EXPECT_EQ(e[1].value, "0");
+  EXPECT_EQ(e[2].name, "tol");
+  EXPECT_EQ(e[2].value, "1.0e-9");
+  EXPECT_EQ(e[2].line, 5);
+  EXPECT_TRUE(s.section("empty").empty());
+  expect_prefix(error_of([&] { s.section("list"); }),
+                "disco.yaml:14: key 'list': ", "must be a section");
+  expect_prefix(error_of([&] { s.section("solver"); }), "disco.yaml: key 'solver': ", "missing");
+  const Settings nested = Settings::parse("ipopt:\n  a: 1\n  b: [1]\n", kFile);
+  expect_prefix(error_of([&] { nested.section("ipopt"); }),
+                "disco.yaml:3: key 'ipopt.b': ", "single value");
+}
+
+TEST(Settings, Where) {
+  Settings s = make();
+  EXPECT_EQ(s.where("elastic.zeta"), "disco.yaml:7");
+  EXPECT_EQ(s.where("ipopt"), "disco.yaml:3");
+  EXPECT_EQ(s.where("no.such"), "disco.yaml");
+  s.apply_override("elastic.zeta=5");
+  EXPECT_EQ(s.where("elastic.zeta"), "--set");
+}
+
+TEST(Settings, Overrides) {
+  Settings s = make();
+  s.apply_override("elastic.zeta=100");
+  s.apply_override("elastic.polish=false");
+  s.apply_override("elastic.formulation=per_pair");
+  s.apply_override("ipopt.print_level=5");
+  s.apply_override("ipopt.max_iter=50");
+  s.apply_override("list.0=4");
+  EXPECT_DOUBLE_EQ(s.number("elastic.zeta"), 100);
+  EXPECT_FALSE(s.boolean("elastic.polish"));
+  EXPECT_EQ(s.text("elastic.formulation"), "per_pair");
+  EXPECT_EQ(s.integer("list.0"), 4);
+  const std::vector<Settings::Entry> e = s.section("ipopt");
+  ASSERT_EQ(e.size(), 4u);
+  EXPECT_EQ(e[1].name, "print_level");
+  EXPECT_EQ(e[1].value, "5");
+  EXPECT_EQ(e[1].line, 0);
+  EXPECT_EQ(e[2].line, 5);
+  EXPECT_EQ(e[3].name, "max_iter");  // new options come last
+  EXPECT_EQ(e[3].value, "50");
+  EXPECT_EQ(e[3].line, 0);
+  // An ipopt section is created when the file has none.
+  Settings bare = Settings::parse("elastic:\n  zeta: 1\n", kFile);
+  bare.apply_override("ipopt.tol=1e-6");
+  ASSERT_EQ(bare.section("ipopt").size(), 1u);
+  EXPECT_EQ(bare.section("ipopt")[0].value, "1e-6");
+}
+
+TEST(Settings, OverrideErrors) {
+  Settings s = make();
+  expect_prefix(error_of([&] { s.apply_override("elastic.zeta"); }),
+                "--set: key 'elastic.zeta': ", "KEY=VALUE");
+  expect_prefix(error_of([&] { s.apply_override("elastic.zetta=1"); }),
+                "--set: key 'elastic.zetta': ", "no such setting");
+  expect_prefix(error_of([&] { s.apply_override("solver.tol=1"); }),
+                "--set: key 'solver.tol': ", "no such setting");
+  expect_prefix(error_of([&] { s.apply_override("elastic=1"); }),
+                "--set: key 'elastic': ", "is a section");
+  expect_prefix(error_of([&] { s.apply_override("elastic..zeta=1"); }),
+                "--set: key 'elastic..zeta': ", "malformed");
+  expect_prefix(error_of([&] { s.apply_override("elastic.zeta=[1, 2]"); }),
+                "--set: key 'elastic.zeta': ", "single scalar");
+  expect_prefix(error_of([&] { s.apply_override("elastic.zeta="); }),
+                "--set: key 'elastic.zeta': ", "needs a value");
+  expect_prefix(error_of([&] { s.apply_override("elastic.zeta=[1"); }),
+                "--set: key 'elastic.zeta': ", "cannot parse");
+  // A wrong type given on the command line is reported as "--set" when used.
+  s.apply_override("elastic.rounds=2.5");
+  expect_prefix(error_of([&] { s.integer("elastic.rounds"); }),
+                "--set: key 'elastic.rounds': ", "must be an integer (got '2.5')");
+}
+
+TEST(Settings, CopiesAreIndependent) {
+  const Settings original = make();
+  Settings copy = original;
+  copy.apply_override("elastic.zeta=3");
+  EXPECT_DOUBLE_EQ(copy.number("elastic.zeta"), 3);
+  EXPECT_DOUBLE_EQ(original.number("elastic.zeta"), 10);
+  EXPECT_EQ(original.where("elastic.zeta"), "disco.yaml:7");
+  Settings assigned;
+  assigned = original;
+  assigned.apply_override("elastic.zeta=4");
+  EXPECT_DOUBLE_EQ(original.number("elastic.zeta"), 10);
+}
+
+TEST(Settings, BadDocuments) {
+  expect_prefix(error_of([] { Settings::parse("a: 1\nb: [1\n", kFile); }),
+                "disco.yaml:", "YAML syntax error");
+  expect_prefix(error_of([] { Settings::parse("a:\n  b: 1\n  b: 2\n", kFile); }),
+                "disco.yaml:3: key 'a.b': ", "duplicate key");
+  expect_prefix(error_of([] { Settings::parse("- 1\n", kFile); }),
+                "disco.yaml:1: ", "must be a YAML mapping");
+  const Settings empty = Settings::parse("", kFile);
+  expect_prefix(error_of([&] { empty.number("a"); }), "disco.yaml: key 'a': ", "missing");
+}
+
+TEST(Settings, LoadFile) {
+  const std::string path = temp_path("disco.yaml");
+  {
+    std::ofstream out(path);
+    out << kText;
+  }
+  const Settings s = Settings::load(path);
+  EXPECT_EQ(s.source(), path);
+  EXPECT_EQ(s.where("elastic.zeta"), path + ":7");
+  expect_prefix(error_of([&] { s.integer("elastic.zeta"); }),
+                path + ":7: key 'elastic.zeta': ", "integer");
+  std::filesystem::remove(path);
+  const std::string msg = error_of([&] { Settings::load(path); });
+  EXPECT_NE(msg.find(path), std::string::npos) << msg;
+  EXPECT_NE(msg.find("cannot open"), std::string::npos) << msg;
+}
+
+TEST(Settings, SplitOverrides) {
+  std::vector<std::string> scene, settings;
+  split_overrides({"scene.steps=25", "elastic.zeta=1", "scene.robots.0.mass=2", "ipopt.tol=1"},
+                  scene, settings);
+  EXPECT_EQ(scene, (std::vector<std::string>{"steps=25", "robots.0.mass=2"}));
+  EXPECT_EQ(settings, (std::vector<std::string>{"elastic.zeta=1", "ipopt.tol=1"}));
+  expect_prefix(error_of([&] { split_overrides({"scene.steps"}, scene, settings); }),
+                "--set: key 'scene.steps': ", "KEY=VALUE");
+  expect_prefix(error_of([&] { split_overrides({"=3"}, scene, settings); }),
+                "--set: key '=3': ", "empty key");
+}
+
+}  // namespace
+}  // namespace disco

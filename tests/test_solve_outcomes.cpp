@@ -1,0 +1,55 @@
+// Outcomes of whole solves that are not optima: infeasible scenes end with
+// status "infeasible" (never a crash, a hang or a false "solved").
+#include <gtest/gtest.h>
+
+#include "core/config/solver_settings.h"
+#include "core/model/scene_yaml.h"
+#include "search/solve_scene.h"
+
+namespace disco {
+namespace {
+
+TEST(SolveOutcomes, TwoRobotsWithTheSameTargetAreInfeasible) {
+  const Scene scene = parse_scene(R"(
+scenario: same_target
+steps: 10
+defaults: {radius: 0.5, mass: 1.0, mu: 0.2, force_max: 5.0, K: 8}
+robots:
+  - name: a
+    start: {x: 0, y: 0}
+    target: {x: 3, y: 0, vx: 0, vy: 0}
+  - name: b
+    start: {x: 0, y: 3}
+    target: {x: 3, y: 0, vx: 0, vy: 0}
+)",
+                                  "same_target.yaml");
+  const SceneSolve run = solve_scene(scene, Settings::load(default_settings_path()));
+  EXPECT_FALSE(run.solved());
+  EXPECT_EQ(run.info.status, "infeasible");
+  EXPECT_EQ(run.z.size(), 0);
+}
+
+TEST(SolveOutcomes, ForceAxisThatCannotReachTheTargetIsNotSolved) {
+  // D_ef = 1 along x, target off the x axis: no force can move the robot in y.
+  const Scene scene = parse_scene(R"(
+scenario: off_axis
+steps: 10
+robots:
+  - name: a
+    radius: 0.5
+    mass: 1.0
+    mu: 0.2
+    force_max: 5.0
+    force_dims: 1
+    K: 8
+    start: {x: 0, y: 0}
+    target: {x: 3, y: 1, vx: 0, vy: 0}
+)",
+                                  "off_axis.yaml");
+  const SceneSolve run = solve_scene(scene, Settings::load(default_settings_path()));
+  EXPECT_FALSE(run.solved());
+  EXPECT_EQ(run.info.status, "infeasible");
+}
+
+}  // namespace
+}  // namespace disco
