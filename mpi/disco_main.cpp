@@ -16,6 +16,7 @@
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -44,7 +45,13 @@ int run_solve(const SolveOptions& o) {
   Settings settings = Settings::load(o.settings);
   for (const auto& s : settings_sets) settings.apply_override(s);
   const Scene scene = load_scene(o.scene, scene_sets);
-  if (o.threads > 0) omp_set_num_threads(o.threads);
+  // One thread unless asked: evaluation is a small share of a solve, and
+  // parallelism across starts comes from MPI ranks (ranks x threads <= cores).
+  if (o.threads > 0) {
+    omp_set_num_threads(o.threads);
+  } else if (std::getenv("OMP_NUM_THREADS") == nullptr) {
+    omp_set_num_threads(1);
+  }
   const std::string out_dir = o.out.empty() ? "out/" + scene.name : o.out;
   std::filesystem::create_directories(out_dir);
 
@@ -100,7 +107,7 @@ int main(int argc, char** argv) {
   auto* cmd = app.add_subcommand("solve", "Solve one scene from one start (objective reduction)");
   cmd->add_option("scene", solve.scene, "Scene file (YAML)")->required();
   cmd->add_option("--out", solve.out, "Output directory (default: out/SCENARIO)");
-  cmd->add_option("--threads", solve.threads, "OpenMP threads (default: OMP_NUM_THREADS)")
+  cmd->add_option("--threads", solve.threads, "OpenMP threads (default: OMP_NUM_THREADS, else 1)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--settings", solve.settings, "Solver settings file")
       ->capture_default_str();

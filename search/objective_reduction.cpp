@@ -28,6 +28,10 @@ ReductionSettings reduction_settings(const Settings& s) {
   r.max_solves = s.integer("reduction.max_solves");
   if (r.max_solves < 0)
     throw InputError(s.where("reduction.max_solves") + ": key 'reduction.max_solves': must be >= 0");
+  r.step_iterations = s.integer("reduction.step_iterations");
+  if (r.step_iterations < 1)
+    throw InputError(s.where("reduction.step_iterations") +
+                     ": key 'reduction.step_iterations': must be >= 1");
   r.time_limit = s.number("reduction.time_limit");
   if (r.time_limit < 0)
     throw InputError(s.where("reduction.time_limit") + ": key 'reduction.time_limit': must be >= 0");
@@ -77,14 +81,25 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
 
   // 2. Inexact objective reduction.
   double rate = cfg.rate;
+  bool fixed_steps = false;
   for (int k = 0; k < cfg.max_solves && rate >= cfg.min_rate; ++k) {
     if (cfg.time_limit > 0 && elapsed() > cfg.time_limit) break;
     const double bound = (1.0 - rate) * out.T_best;
-    problem.limit_horizon(bound);
+    if (fixed_steps) {
+      problem.fix_horizon(bound);
+    } else {
+      problem.limit_horizon(bound);
+      solver.set_iteration_limit(cfg.step_iterations);
+    }
     MpccResult r = solver.solve(problem.program(), out.best);
+    solver.set_iteration_limit(0);
     const double T_f = problem.horizon(r.z);
     const bool improved = r.solved() && T_f < out.T_best;
-    record("reduction", bound, r, improved);
+    record(fixed_steps ? "fixed step" : "reduction", bound, r, improved);
+    if (!fixed_steps && r.status == MpccStatus::kFailed) {
+      fixed_steps = true;  // minimising stalled: retry this bound as a fixed step
+      continue;
+    }
     if (improved) {
       out.best = std::move(r);
       out.T_best = T_f;
@@ -93,6 +108,19 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
       rate = std::min(rate, 0.5);
     } else {
       rate *= cfg.shrink;
+    }
+  }
+  // 3. From the last homotopy step to the local optimum.
+  if (fixed_steps && !(cfg.time_limit > 0 && elapsed() > cfg.time_limit)) {
+    problem.limit_horizon(out.T_best);
+    MpccResult r = solver.solve(problem.program(), out.best);
+    const double T_f = problem.horizon(r.z);
+    const bool improved = r.solved() && T_f < out.T_best;
+    record("minimize", out.T_best, r, improved);
+    if (improved) {
+      out.best = std::move(r);
+      out.T_best = T_f;
+      out.time_to_best = elapsed();
     }
   }
   // Free the horizon again: the problem is the model itself for later users.

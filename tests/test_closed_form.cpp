@@ -56,7 +56,9 @@ void check_convergence(const Case& c) {
                 err);
     EXPECT_LE(viol, 1e-6);
     EXPECT_LE(compl_, 1e-6);
-    if (steps == 100) EXPECT_LE(err, 1e-3) << "N_t = 100 must be within 0.1 %";
+    if (steps == 100) {
+      EXPECT_LE(err, 1e-3) << "N_t = 100 must be within 0.1 %";
+    }
     EXPECT_LT(err, previous) << "error must shrink as N_t grows (N_t = " << steps << ")";
     previous = err;
   }

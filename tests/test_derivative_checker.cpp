@@ -4,9 +4,12 @@
 
 #include "core/nlp/derivative_checker.h"
 #include "core/nlp/polynomial_program.h"
+#include "tests/test_support_derivatives.h"
 
 namespace disco {
 namespace {
+
+using test_support::expect_exact_derivatives;
 
 // f = x0 * x1 (objective), c0 = x0^2 x1 + 3 x2, c1 = x1 * x2 * x0 - 2.
 PolynomialProgram small_program() {
@@ -24,16 +27,10 @@ PolynomialProgram small_program() {
 }
 
 // Wraps an Nlp and corrupts one derivative, to prove the checker notices.
-class Corrupted : public Nlp {
+class Corrupted : public test_support::ForwardingNlp {
  public:
   enum What { kJacobianValue, kHessianValue, kDropJacobianEntry, kDropHessianEntry };
-  Corrupted(const Nlp& inner, What what) : inner_(inner), what_(what) {
-    z_lo_ = inner.variable_lower();
-    z_hi_ = inner.variable_upper();
-    c_lo_ = inner.constraint_lower();
-    c_hi_ = inner.constraint_upper();
-    jac_ = inner.jacobian_pattern();
-    hess_ = inner.hessian_pattern();
+  Corrupted(const Nlp& inner, What what) : ForwardingNlp(inner), what_(what) {
     if (what == kDropJacobianEntry) {
       jac_.rows.pop_back();
       jac_.cols.pop_back();
@@ -45,15 +42,6 @@ class Corrupted : public Nlp {
   }
 
  private:
-  bool do_objective(const ConstVectorRef& z, double& f) const override {
-    return inner_.objective(z, f);
-  }
-  bool do_gradient(const ConstVectorRef& z, VectorRef g) const override {
-    return inner_.gradient(z, g);
-  }
-  bool do_constraints(const ConstVectorRef& z, VectorRef c) const override {
-    return inner_.constraints(z, c);
-  }
   bool do_jacobian(const ConstVectorRef& z, VectorRef v) const override {
     Vector full(inner_.jacobian_pattern().size());
     if (!inner_.jacobian(z, full)) return false;
@@ -69,7 +57,6 @@ class Corrupted : public Nlp {
     if (what_ == kHessianValue) v[0] += 1e-3;
     return true;
   }
-  const Nlp& inner_;
   What what_;
 };
 
@@ -79,12 +66,7 @@ TEST(DerivativeChecker, AcceptsExactDerivatives) {
   z << 0.7, -1.3, 2.1;
   lambda << 0.4, -2.5;
   const auto rep = check_derivatives(p, z, 1.5, lambda);
-  ASSERT_TRUE(rep.evaluated);
-  EXPECT_LT(rep.gradient_error, 1e-8);
-  EXPECT_LT(rep.jacobian_error, 1e-8);
-  EXPECT_LT(rep.hessian_error, 1e-7);
-  EXPECT_EQ(rep.jacobian_outside, 0.0);
-  EXPECT_EQ(rep.hessian_outside, 0.0);
+  expect_exact_derivatives(rep, 1e-8, 1e-7);
 }
 
 TEST(DerivativeChecker, CatchesEveryKindOfCorruption) {

@@ -2,10 +2,10 @@
 // promises: "each output is summed by one thread in a fixed order, so results
 // are bitwise identical for any thread count").
 //
-// 1. Evaluations: on a scene big enough that the OpenMP loops fork (more than
-//    kParallelMin = 2048 rows / nonzeros, core/nlp/polynomial_program.cpp),
-//    constraints, Jacobian and Hessian values at a random point must be the
-//    same bits with 1, 2 and 3 threads.
+// 1. Evaluations: with the parallel threshold lowered so that every OpenMP
+//    loop forks (PolynomialProgram::set_parallel_threshold), constraints,
+//    Jacobian and Hessian values at a random point must be the same bits with
+//    1, 2 and 3 threads.
 // 2. A whole elastic solve (configs/scenarios/one_robot_axis.yaml, 20 steps,
 //    solvers made from configs/disco.yaml) must end at the same bits with 1
 //    and 2 threads.
@@ -26,8 +26,8 @@
 namespace disco {
 namespace {
 
-// The threshold below which polynomial_program.cpp runs a loop on one thread.
-constexpr int kParallelMin = 2048;
+// Loops over at least this many outputs fork; set on every program here.
+constexpr int kParallelMin = 2;
 
 std::string scenario(const std::string& file) {
   return std::string(DISCO_SOURCE_DIR) + "/configs/scenarios/" + file;
@@ -79,7 +79,8 @@ Evaluation evaluate(const PolynomialProgram& P, const Vector& z, double sigma,
 }
 
 TEST(ModelThreads, EvaluationsAreBitwiseIdenticalForAnyThreadCount) {
-  const RobotProblem rp(load_scene(scenario("three_robots_contact.yaml"), {"steps=100"}));
+  RobotProblem rp(load_scene(scenario("three_robots_contact.yaml"), {"steps=100"}));
+  rp.program().set_parallel_threshold(kParallelMin);
   const PolynomialProgram& P = rp.program();
   // Every loop of the evaluator must actually run in parallel.
   ASSERT_GE(P.num_constraints(), kParallelMin);
@@ -118,6 +119,7 @@ TEST(ModelThreads, ElasticSolveIsBitwiseIdenticalWithOneAndTwoThreads) {
     ThreadCount threads;
     threads.set(n);
     RobotProblem rp(scene);
+    rp.program().set_parallel_threshold(kParallelMin);
     // At least the Jacobian loop forks with two threads.
     EXPECT_GE(rp.program().jacobian_pattern().size(), kParallelMin);
     IpoptSolver ipopt(ipopt_options(settings));

@@ -5,64 +5,21 @@
 
 #include <cmath>
 #include <cstddef>
-#include <filesystem>
-#include <fstream>
 #include <set>
-#include <sstream>
 #include <utility>
 
+#include "core/config/yaml_nodes.h"
 #include "core/util/errors.h"
 
 namespace disco {
 namespace {
 
-const char* const kOverrideSource = "--set";
-
-[[noreturn]] void override_fail(const std::string& key, const std::string& what) {
-  throw InputError(located_message(kOverrideSource, 0, key, what));
-}
-
-int line_of(const YAML::Node& n) {
-  if (!n.IsDefined()) return 0;
-  const YAML::Mark mark = n.Mark();
-  return mark.is_null() ? 0 : mark.line + 1;
-}
-
-std::string describe(const YAML::Node& n) {
-  if (!n.IsDefined()) return "nothing";
-  switch (n.Type()) {
-    case YAML::NodeType::Null:
-      return "null";
-    case YAML::NodeType::Scalar:
-      return n.Tag() == "!" ? "the quoted string \"" + n.Scalar() + "\"" : "'" + n.Scalar() + "'";
-    case YAML::NodeType::Sequence:
-      return "a sequence";
-    case YAML::NodeType::Map:
-      return "a mapping";
-    default:
-      return "nothing";
-  }
-}
-
-std::vector<std::string> split_dots(const std::string& key) {
-  std::vector<std::string> parts;
-  std::size_t begin = 0;
-  while (true) {
-    const std::size_t dot = key.find('.', begin);
-    parts.push_back(key.substr(begin, dot == std::string::npos ? std::string::npos : dot - begin));
-    if (dot == std::string::npos) break;
-    begin = dot + 1;
-  }
-  return parts;
-}
-
-bool is_index(const std::string& s) {
-  if (s.empty() || s.size() > 9) return false;
-  for (char c : s) {
-    if (c < '0' || c > '9') return false;
-  }
-  return true;
-}
+using yaml::describe;
+using yaml::is_index;
+using yaml::kOverrideSource;
+using yaml::line_of;
+using yaml::override_fail;
+using yaml::split_dots;
 
 // The child of `n` named `part` (a key of a mapping or an index of a sequence), or an
 // undefined node.
@@ -136,6 +93,21 @@ struct Settings::Impl {
     if (!n.IsScalar()) fail(key, n, std::string("must be ") + kind + " (got " + describe(n) + ")");
     return n;
   }
+
+  // The scalar at `key` converted to T; InputError "must be KIND (got ...)" if missing, not
+  // a scalar, a quoted string, or not convertible. `node` (if given) receives the scalar.
+  template <typename T>
+  T typed(const std::string& key, const char* kind, YAML::Node* node = nullptr) const {
+    const YAML::Node n = scalar(key, kind);
+    if (node != nullptr) node->reset(n);
+    const std::string what = std::string("must be ") + kind + " (got " + describe(n) + ")";
+    if (n.Tag() == "!") fail(key, n, what);
+    try {
+      return n.as<T>();
+    } catch (const YAML::Exception&) {
+      fail(key, n, what);
+    }
+  }
 };
 
 Settings::Settings() : impl_(std::make_unique<Impl>()) {}
@@ -157,28 +129,13 @@ Settings& Settings::operator=(const Settings& other) {
 }
 
 Settings Settings::load(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    throw InputError(located_message(path, 0, "", "cannot open settings file: it is a directory"));
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(located_message(path, 0, "", "cannot open settings file"));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(located_message(path, 0, "", "cannot read settings file"));
-  return parse(text.str(), path);
+  return parse(yaml::read_file(path, "settings file"), path);
 }
 
 Settings Settings::parse(const std::string& text, const std::string& source) {
   Settings s;
   s.impl_->source = source;
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    const int line = e.mark.is_null() ? 0 : e.mark.line + 1;
-    throw InputError(located_message(source, line, "", "YAML syntax error: " + e.msg));
-  }
+  const YAML::Node root = yaml::load(text, source);
   if (root.IsNull()) return s;  // an empty file: no settings
   if (!root.IsMap()) {
     throw InputError(
@@ -191,20 +148,11 @@ Settings Settings::parse(const std::string& text, const std::string& source) {
 }
 
 void Settings::apply_override(const std::string& assignment) {
-  const std::size_t eq = assignment.find('=');
-  if (eq == std::string::npos) override_fail(assignment, "expected KEY=VALUE");
-  const std::string key = assignment.substr(0, eq);
-  const std::string text = assignment.substr(eq + 1);
-  const std::vector<std::string> parts = split_dots(key);
-  for (const std::string& p : parts) {
-    if (p.empty()) override_fail(key, "malformed key (expected a dotted path like elastic.zeta)");
-  }
-  YAML::Node value;
-  try {
-    value = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    override_fail(key, "cannot parse the value '" + text + "' as YAML: " + e.msg);
-  }
+  const yaml::Override o = yaml::parse_override(assignment, "elastic.zeta");
+  const std::string& key = o.key;
+  const std::string& text = o.text;
+  const std::vector<std::string>& parts = o.parts;
+  const YAML::Node& value = o.value;
   if (value.IsNull()) override_fail(key, "needs a value (got '" + text + "')");
   if (!value.IsScalar())
     override_fail(key, "the value must be a single scalar (got " + describe(value) + ")");
@@ -247,39 +195,18 @@ void Settings::apply_override(const std::string& assignment) {
 }
 
 double Settings::number(const std::string& key) const {
-  const YAML::Node n = impl_->scalar(key, "a number");
-  const std::string what = "must be a number (got " + describe(n) + ")";
-  if (n.Tag() == "!") impl_->fail(key, n, what);
-  double v = 0;
-  try {
-    v = n.as<double>();
-  } catch (const YAML::Exception&) {
-    impl_->fail(key, n, what);
-  }
+  YAML::Node n;
+  const double v = impl_->typed<double>(key, "a number", &n);
   if (std::isnan(v)) impl_->fail(key, n, "must be a number, not NaN");
   return v;
 }
 
 int Settings::integer(const std::string& key) const {
-  const YAML::Node n = impl_->scalar(key, "an integer");
-  const std::string what = "must be an integer (got " + describe(n) + ")";
-  if (n.Tag() == "!") impl_->fail(key, n, what);
-  try {
-    return n.as<int>();
-  } catch (const YAML::Exception&) {
-    impl_->fail(key, n, what);
-  }
+  return impl_->typed<int>(key, "an integer");
 }
 
 bool Settings::boolean(const std::string& key) const {
-  const YAML::Node n = impl_->scalar(key, "true or false");
-  const std::string what = "must be true or false (got " + describe(n) + ")";
-  if (n.Tag() == "!") impl_->fail(key, n, what);
-  try {
-    return n.as<bool>();
-  } catch (const YAML::Exception&) {
-    impl_->fail(key, n, what);
-  }
+  return impl_->typed<bool>(key, "true or false");
 }
 
 std::string Settings::text(const std::string& key) const {

@@ -81,7 +81,7 @@ MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta) {
   double previous_residual = -1.0;
   while (true) {
     nlp.set_zeta(zeta);
-    const NlpResult r = ipopt_.solve(nlp, start, remaining());
+    const NlpResult r = ipopt_.solve(nlp, start, remaining(), settings_.iteration_limit);
     record(r);
     out.zeta = zeta;
     if (r.ipopt_status == 2) {
@@ -129,7 +129,7 @@ MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta) {
     for (int k = 0; k < nlp.num_variables(); ++k)  // start inside the new bounds
       polish_start.z[k] = std::clamp(polish_start.z[k], nlp.variable_lower()[k],
                                      nlp.variable_upper()[k]);
-    const NlpResult r = ipopt_.solve(nlp, polish_start, remaining());
+    const NlpResult r = ipopt_.solve(nlp, polish_start, remaining(), settings_.iteration_limit);
     record(r);
     if (r.converged() &&
         out.certificate.within(settings_.violation_tol, settings_.complementarity_tol)) {

@@ -46,6 +46,7 @@ struct ElasticSettings {
   double violation_tol = 1e-6;
   bool polish = true;
   double wall_limit_s = 0.0;  // per solve() call; 0 = none
+  int iteration_limit = 0;    // per Ipopt solve; 0 = Ipopt's max_iter only
 };
 
 // How well z satisfies the MPCC, in the MPCC's own units.
@@ -79,6 +80,7 @@ class ElasticSolver {
   ElasticSolver(IpoptSolver& ipopt, ElasticSettings settings)
       : ipopt_(ipopt), settings_(settings) {}
   const ElasticSettings& settings() const { return settings_; }
+  void set_iteration_limit(int n) { settings_.iteration_limit = n; }
 
   // From an MPCC point z0.
   MpccResult solve(const Mpcc& mpcc, const ConstVectorRef& z0);

@@ -23,8 +23,13 @@ using Clock = std::chrono::steady_clock;
 class TnlpAdapter : public Ipopt::TNLP {
  public:
   TnlpAdapter(const Nlp& nlp, const NlpPoint& start, NlpResult& out, Clock::time_point deadline,
-              bool has_deadline)
-      : nlp_(nlp), start_(start), out_(out), deadline_(deadline), has_deadline_(has_deadline) {}
+              bool has_deadline, int iteration_limit)
+      : nlp_(nlp),
+        start_(start),
+        out_(out),
+        deadline_(deadline),
+        has_deadline_(has_deadline),
+        iteration_limit_(iteration_limit) {}
 
   bool get_nlp_info(Index& n, Index& m, Index& nnz_jac, Index& nnz_h,
                     IndexStyleEnum& style) override {
@@ -98,6 +103,7 @@ class TnlpAdapter : public Ipopt::TNLP {
                              Number, Number, Number, Number, Index,
                              const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
     out_.iterations = iter;
+    if (iteration_limit_ > 0 && iter >= iteration_limit_) return false;
     return !(has_deadline_ && Clock::now() > deadline_);
   }
 
@@ -118,6 +124,7 @@ class TnlpAdapter : public Ipopt::TNLP {
   NlpResult& out_;
   Clock::time_point deadline_;
   bool has_deadline_;
+  int iteration_limit_;
 };
 
 double parse_number(const IpoptOption& o, bool integer) {
@@ -189,7 +196,8 @@ IpoptSolver::IpoptSolver(const std::vector<IpoptOption>& options)
 
 IpoptSolver::~IpoptSolver() = default;
 
-NlpResult IpoptSolver::solve(const Nlp& nlp, const NlpPoint& start, double wall_limit_s) {
+NlpResult IpoptSolver::solve(const Nlp& nlp, const NlpPoint& start, double wall_limit_s,
+                             int iteration_limit) {
   DISCO_CHECK(start.z.size() == nlp.num_variables(), "start point has the wrong size");
   if (start.has_duals()) {
     DISCO_CHECK(start.lambda.size() == nlp.num_constraints(), "warm-start duals: wrong size");
@@ -202,7 +210,7 @@ NlpResult IpoptSolver::solve(const Nlp& nlp, const NlpPoint& start, double wall_
   auto& app = app_->app;
   app->Options()->SetStringValue("warm_start_init_point", start.has_duals() ? "yes" : "no");
   Ipopt::SmartPtr<Ipopt::TNLP> tnlp =
-      new TnlpAdapter(nlp, start, out, deadline, wall_limit_s > 0.0);
+      new TnlpAdapter(nlp, start, out, deadline, wall_limit_s > 0.0, iteration_limit);
   out.ipopt_status = static_cast<int>(app->OptimizeTNLP(tnlp));
   out.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   if (out.point.z.size() != nlp.num_variables()) {  // Ipopt gave up before finalize

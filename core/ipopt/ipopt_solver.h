@@ -54,9 +54,10 @@ class IpoptSolver {
   IpoptSolver& operator=(const IpoptSolver&) = delete;
 
   // Solves `nlp` from start.z; when start has duals (from a solve of an NLP
-  // of the same shape) they warm-start Ipopt. A positive wall_limit_s stops
-  // the solve after that many seconds (status User_Requested_Stop).
-  NlpResult solve(const Nlp& nlp, const NlpPoint& start, double wall_limit_s = 0.0);
+  // of the same shape) they warm-start Ipopt. A positive limit stops the
+  // solve after that many seconds or iterations (status User_Requested_Stop).
+  NlpResult solve(const Nlp& nlp, const NlpPoint& start, double wall_limit_s = 0.0,
+                  int iteration_limit = 0);
 
  private:
   struct Application;  // holds Ipopt's reference-counted application

@@ -40,10 +40,13 @@ std::optional<double> robot_lower_bound(const Robot& rb, double gravity) {
   const double push = rb.force_dims == 2
                           ? rb.force_max * (std::abs(ux) + std::abs(uy))
                           : rb.force_max * std::abs(rb.force_axis[0] * ux + rb.force_axis[1] * uy);
-  double support = -1.0;  // max_k d_k . u
+  // Moving along u, maximum dissipation picks the vertex minimising d_k . u:
+  // the friction against the motion is mu M g max_k (-d_k . u). (For even K
+  // this equals max_k d_k . u; for odd K it does not.)
+  double support = -1.0;
   for (int k = 0; k < rb.friction_edges; ++k) {
     const double angle = 2.0 * std::numbers::pi * k / rb.friction_edges;
-    support = std::max(support, std::cos(angle) * ux + std::sin(angle) * uy);
+    support = std::max(support, -(std::cos(angle) * ux + std::sin(angle) * uy));
   }
   const double friction = rb.mu * rb.mass * gravity * support;
   const double a2 = (push + friction) / rb.mass;

@@ -5,8 +5,8 @@
 // unit direction u, pushing with its largest force along u,
 //     F_u = F_max (|u_x| + |u_y|)   (D_ef = 2, infinity-norm box)
 //     F_u = F_max |a . u|           (D_ef = 1, force axis a)
-// against floor friction of magnitude f_u = mu M g max_k d_k . u (the K-gon's
-// dissipation along u; mu M g when u is a vertex direction), moves fastest by
+// against floor friction of magnitude f_u = mu M g max_k (-d_k . u) (the
+// K-gon's dissipation along u; mu M g when -u is a vertex direction), moves fastest by
 // bang-bang control: full force until the switching point, full reverse force
 // until it stops. With a_1 = (F_u - f_u) / M (speeding up, friction against)
 // and a_2 = (F_u + f_u) / M (braking, friction helping):

@@ -7,20 +7,21 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/config/yaml_nodes.h"
 #include "core/util/errors.h"
 
 namespace disco {
 namespace {
 
-const char* const kOverrideSource = "--set";
+using yaml::describe;
+using yaml::is_index;
+using yaml::kOverrideSource;
+using yaml::override_fail;
 
 const std::vector<std::string> kRootKeys = {"scenario", "description", "steps", "gravity",
                                             "defaults", "robots",      "pairs"};
@@ -68,14 +69,6 @@ std::string dotted(const std::string& indexed) {
   return out;
 }
 
-bool is_index(const std::string& s) {
-  if (s.empty() || s.size() > 9) return false;
-  for (char c : s) {
-    if (c < '0' || c > '9') return false;
-  }
-  return true;
-}
-
 bool is_name(const std::string& s) {
   if (s.empty()) return false;
   for (char c : s) {
@@ -86,23 +79,6 @@ bool is_name(const std::string& s) {
   return true;
 }
 
-// What a node holds, for the "(got ...)" part of messages.
-std::string describe(const YAML::Node& n) {
-  if (!n.IsDefined()) return "nothing";
-  switch (n.Type()) {
-    case YAML::NodeType::Null:
-      return "null";
-    case YAML::NodeType::Scalar:
-      return n.Tag() == "!" ? "the quoted string \"" + n.Scalar() + "\"" : "'" + n.Scalar() + "'";
-    case YAML::NodeType::Sequence:
-      return "a sequence";
-    case YAML::NodeType::Map:
-      return "a mapping";
-    default:
-      return "nothing";
-  }
-}
-
 // A node (or a mapping key) that came from an override: its indexed path and the key as
 // given on the command line. Everything at or below `path` is reported as "--set".
 struct OverrideRecord {
@@ -110,39 +86,13 @@ struct OverrideRecord {
   std::string key;
 };
 
-[[noreturn]] void override_fail(const std::string& key, const std::string& what) {
-  throw InputError(located_message(kOverrideSource, 0, key, what));
-}
-
-std::vector<std::string> split_dots(const std::string& key) {
-  std::vector<std::string> parts;
-  std::size_t begin = 0;
-  while (true) {
-    const std::size_t dot = key.find('.', begin);
-    parts.push_back(key.substr(begin, dot == std::string::npos ? std::string::npos : dot - begin));
-    if (dot == std::string::npos) break;
-    begin = dot + 1;
-  }
-  return parts;
-}
-
 // Applies one "KEY=VALUE" override to `root` (a mapping) and records what it touched.
 void apply_override(YAML::Node& root, const std::string& assignment,
                     std::vector<OverrideRecord>& records) {
-  const std::size_t eq = assignment.find('=');
-  if (eq == std::string::npos) override_fail(assignment, "expected KEY=VALUE");
-  const std::string key = assignment.substr(0, eq);
-  const std::string text = assignment.substr(eq + 1);
-  const std::vector<std::string> parts = split_dots(key);
-  for (const std::string& p : parts) {
-    if (p.empty()) override_fail(key, "malformed key (expected a dotted path like robots.0.mass)");
-  }
-  YAML::Node value;
-  try {
-    value = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    override_fail(key, "cannot parse the value '" + text + "' as YAML: " + e.msg);
-  }
+  const yaml::Override o = yaml::parse_override(assignment, "robots.0.mass");
+  const std::string& key = o.key;
+  const std::vector<std::string>& parts = o.parts;
+  const YAML::Node& value = o.value;
 
   YAML::Node cur = root;
   std::string path;    // indexed, e.g. robots[0].start
@@ -218,14 +168,11 @@ class Doc {
             located_message(kOverrideSource, 0, it->key + dotted(path.substr(p.size())), what));
       }
     }
-    int line = 0;
-    if (at.IsDefined()) {
-      const YAML::Mark mark = at.Mark();
-      if (!mark.is_null()) line = mark.line + 1;
-      // An empty value ("mass:") is marked where the next token starts: use its key's line.
-      if (const auto it = null_lines_.find(path); at.IsNull() && it != null_lines_.end()) {
-        line = it->second;
-      }
+    int line = yaml::line_of(at);
+    // An empty value ("mass:") is marked where the next token starts: use its key's line.
+    if (const auto it = null_lines_.find(path);
+        at.IsDefined() && at.IsNull() && it != null_lines_.end()) {
+      line = it->second;
     }
     // Values below `path` that came from overrides (e.g. robots.1.start.x for a start
     // overlap reported at robots[1].start) are named too.
@@ -625,13 +572,7 @@ Scene validate(const Doc& doc, const YAML::Node& root, const std::string& source
 
 Scene parse_scene(const std::string& text, const std::string& source,
                   const std::vector<std::string>& overrides) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    const int line = e.mark.is_null() ? 0 : e.mark.line + 1;
-    throw InputError(located_message(source, line, "", "YAML syntax error: " + e.msg));
-  }
+  YAML::Node root = yaml::load(text, source);
   if (!root.IsMap()) {
     const Doc plain(source, {});
     if (root.IsNull()) plain.fail(root, "", "the scene is empty");
@@ -644,22 +585,12 @@ Scene parse_scene(const std::string& text, const std::string& source,
     return validate(doc, root, source);
   } catch (const YAML::Exception& e) {
     // Not expected: every access above is checked. Still a user-input problem.
-    const int line = e.mark.is_null() ? 0 : e.mark.line + 1;
-    throw InputError(located_message(source, line, "", e.msg));
+    throw InputError(located_message(source, yaml::line_of(e.mark), "", e.msg));
   }
 }
 
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    throw InputError(located_message(path, 0, "", "cannot open scene file: it is a directory"));
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(located_message(path, 0, "", "cannot open scene file"));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw InputError(located_message(path, 0, "", "cannot read scene file"));
-  return parse_scene(text.str(), path, overrides);
+  return parse_scene(yaml::read_file(path, "scene file"), path, overrides);
 }
 
 }  // namespace disco

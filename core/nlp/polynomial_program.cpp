@@ -225,9 +225,6 @@ namespace {
 
 inline double factor(const ConstVectorRef& z, int k) { return k >= 0 ? z[k] : 1.0; }
 
-// Below this many outputs a loop runs on one thread: forking costs more.
-constexpr int kParallelMin = 2048;
-
 }  // namespace
 
 double PolynomialProgram::row_value(int r, const ConstVectorRef& z) const {
@@ -261,7 +258,7 @@ bool PolynomialProgram::do_gradient(const ConstVectorRef& z, VectorRef grad) con
 bool PolynomialProgram::do_constraints(const ConstVectorRef& z, VectorRef c) const {
   DISCO_CHECK(finalized_, "evaluate before finalize");
   const int m = num_constraints();
-#pragma omp parallel for schedule(static) if (m >= kParallelMin)
+#pragma omp parallel for schedule(static) if (m >= parallel_min_)
   for (int r = 0; r < m; ++r) c[r] = row_value(r, z);
   return true;
 }
@@ -270,7 +267,7 @@ bool PolynomialProgram::do_jacobian(const ConstVectorRef& z, VectorRef values) c
   DISCO_CHECK(finalized_, "evaluate before finalize");
   const auto& C = jac_c_;
   const int nnz = jac_.size();
-#pragma omp parallel for schedule(static) if (nnz >= kParallelMin)
+#pragma omp parallel for schedule(static) if (nnz >= parallel_min_)
   for (int e = 0; e < nnz; ++e) {
     double v = 0.0;
     for (int i = C.begin[e]; i < C.begin[e + 1]; ++i)
@@ -286,7 +283,7 @@ bool PolynomialProgram::do_hessian(const ConstVectorRef& z, double sigma,
   const auto& C = hess_c_;
   const int m = num_constraints();
   const int nnz = hess_.size();
-#pragma omp parallel for schedule(static) if (nnz >= kParallelMin)
+#pragma omp parallel for schedule(static) if (nnz >= parallel_min_)
   for (int e = 0; e < nnz; ++e) {
     double v = 0.0;
     for (int i = C.begin[e]; i < C.begin[e + 1]; ++i) {

@@ -66,6 +66,12 @@ class PolynomialProgram : public Mpcc {
   void finalize();
 
   bool finalized() const { return finalized_; }
+  // Loops over fewer outputs (rows, nonzeros) than this run on one thread:
+  // below it forking costs more than the work (evaluation is ~1 % of a solve
+  // here; MUMPS is the rest). Tests lower it to exercise the parallel path.
+  static constexpr int kDefaultParallelMin = 16384;
+  void set_parallel_threshold(int outputs) { parallel_min_ = outputs; }
+  int parallel_threshold() const { return parallel_min_; }
   // A starting point stored with the variables (add_variable's `initial`).
   const Vector& initial_point() const { return z0_; }
   Vector& initial_point() { return z0_; }
@@ -89,6 +95,7 @@ class PolynomialProgram : public Mpcc {
   double row_value(int r, const ConstVectorRef& z) const;
 
   bool finalized_ = false;
+  int parallel_min_ = kDefaultParallelMin;
   Vector z0_;
   // Building: monomials per row (index m = objective) and row constants.
   std::vector<std::vector<Monomial>> building_;

@@ -20,7 +20,10 @@ class InputError : public std::runtime_error {
 inline std::string located_message(const std::string& source, int line,
                                    const std::string& key, const std::string& what) {
   std::string out = source;
-  if (line > 0) out += ":" + std::to_string(line);
+  if (line > 0) {
+    out += ':';
+    out += std::to_string(line);
+  }
   out += ": ";
   if (!key.empty()) out += "key '" + key + "': ";
   out += what;

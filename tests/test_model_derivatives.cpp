@@ -1,0 +1,365 @@
+// Exact derivatives of the robot model, family by family.
+//
+// Every constraint family of core/model/ (plus the dynamics rows it adds its
+// impulses to) is checked against central finite differences on small scenes:
+// a contact pair, an avoid pair, a one-axis robot on a diagonal axis, robots
+// without floor friction (mu = 0, contact mu = 0), and the whole model on
+// three robots in contact. Points: random (fixed seeds), near the floor
+// friction kink (robots almost at rest, d_k . v + gamma ~ 0) and near contact
+// (gaps ~1e-7, nonzero contact forces). Gradient, Jacobian and Hessian must
+// match to 1e-6 (relative) with nothing nonzero outside the declared
+// sparsity. Finally, Ipopt's own second-order derivative test must pass on
+// the elastic NLP of a whole two-robot contact scene.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <numbers>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/config/settings.h"
+#include "core/config/solver_settings.h"
+#include "core/elastic/elastic_nlp.h"
+#include "core/ipopt/ipopt_solver.h"
+#include "core/model/robot_problem.h"
+#include "core/nlp/derivative_checker.h"
+#include "tests/test_support_derivatives.h"
+#include "tests/test_support_model.h"
+
+namespace disco {
+namespace {
+
+using model_test::edge_direction;
+using model_test::make_robot;
+using model_test::make_scene;
+
+constexpr double kTol = 1e-6;
+
+// ------------------------------------------------------------- scenes ---
+
+Robot moving(Robot r, double phi, double vx, double vy, double omega) {
+  r.start[kPhi] = phi;
+  r.start[kVx] = vx;
+  r.start[kVy] = vy;
+  r.start[kOmega] = omega;
+  return r;
+}
+
+// Two robots of different sizes, in contact mode, start in motion.
+Scene contact_pair_scene() {
+  Robot a = moving(make_robot("a", 0.5, 1.0, 0.2, 5.0, 0.0, 0.0, 5), 0.3, 0.4, -0.1, 0.7);
+  Robot b = moving(make_robot("b", 0.4, 1.5, 0.3, 8.0, 1.2, 0.3, 7), -0.2, -0.5, 0.2, -0.4);
+  b.target.lower[kX] = 2.0;  // a terminal box, for the bounds family
+  b.target.upper[kVx] = 0.1;
+  return make_scene("contact_pair", 4, {a, b}, PairMode::kContact, 0.35);
+}
+
+// Two robots in avoid mode (d_s = 0.05).
+Scene avoid_pair_scene() {
+  Robot a = moving(make_robot("a", 0.5, 1.0, 0.2, 5.0, 0.0, 0.0, 4), 0.0, 0.3, 0.3, 0.2);
+  Robot b = moving(make_robot("b", 0.6, 2.0, 0.1, 6.0, 2.0, 0.5, 8), 1.0, -0.3, 0.0, 0.0);
+  a.target.lower[kX] = 1.0;
+  a.target.upper[kX] = 1.0;
+  return make_scene("avoid_pair", 3, {a, b}, PairMode::kAvoid, 0.3, 0.05);
+}
+
+// One robot pushing only along the diagonal (D_ef = 1).
+Scene diagonal_scene() {
+  Robot a = moving(make_robot("a", 0.5, 1.0, 0.2, 5.0, 0.0, 0.0, 8), 0.1, 0.2, 0.1, -0.3);
+  a.force_dims = 1;
+  a.force_axis = {1.0 / std::sqrt(2.0), 1.0 / std::sqrt(2.0)};
+  a.target.lower = {8, 8, -kInf, 0, 0, -kInf};
+  a.target.upper = {8, 8, kInf, 0, 0, kInf};
+  return make_scene("diagonal", 5, {a});
+}
+
+// A robot without floor friction (mu = 0) in contact, with contact mu = 0,
+// with a robot that has floor friction on a square (K = 4).
+Scene frictionless_scene() {
+  Robot a = moving(make_robot("a", 0.5, 1.0, 0.0, 5.0, 0.0, 0.0, 6), 0.0, 0.6, 0.0, 0.5);
+  Robot b = moving(make_robot("b", 0.5, 1.2, 0.25, 6.0, 1.5, -0.2, 4), 0.0, -0.4, 0.1, 0.0);
+  return make_scene("frictionless", 4, {a, b}, PairMode::kContact, 0.0);
+}
+
+// Three equal-radius robots, every pair in contact mode.
+Scene three_contact_scene(int steps = 3) {
+  Robot a = moving(make_robot("a", 0.5, 1.0, 0.2, 5.0, -1.5, 0.0, 6), 0.0, 0.5, 0.0, 0.1);
+  Robot b = moving(make_robot("b", 0.5, 1.3, 0.3, 6.0, 1.5, 0.2, 5), 0.0, -0.5, 0.0, 0.0);
+  Robot c = moving(make_robot("c", 0.5, 0.8, 0.15, 4.0, 0.0, -1.6, 7), 0.0, 0.0, 0.6, -0.2);
+  return make_scene("three_contact", steps, {a, b, c}, PairMode::kContact, 0.3);
+}
+
+struct NamedScene {
+  std::string name;
+  Scene scene;
+};
+
+std::vector<NamedScene> small_scenes() {
+  return {{"contact_pair", contact_pair_scene()},
+          {"avoid_pair", avoid_pair_scene()},
+          {"diagonal_one_axis", diagonal_scene()},
+          {"mu_zero", frictionless_scene()},
+          {"three_contact", three_contact_scene()}};
+}
+
+// ------------------------------------------------------------- points ---
+
+// Every unknown uniform in [-1.5, 1.5], T_f in [0.5, 3].
+Vector random_point(const RobotProblem& rp, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.5, 1.5), tf(0.5, 3.0);
+  Vector z(rp.program().num_variables());
+  for (int k = 0; k < z.size(); ++k) z[k] = u(rng);
+  z[rp.layout().horizon_index()] = tf(rng);
+  return z;
+}
+
+// Almost at rest: every velocity ~1e-7, floor gamma = -min_k d_k . v^{t+1}
+// (so at least one row d_k . v + gamma is ~0, here exactly at the kink) plus
+// a jitter of 1e-9 on odd intervals; contact gamma ~1e-7 as well.
+Vector kink_point(const RobotProblem& rp, unsigned seed) {
+  Vector z = random_point(rp, seed);
+  std::mt19937 rng(seed + 1000);
+  std::uniform_real_distribution<double> tiny(-1e-7, 1e-7), pos(0.0, 1.0);
+  const Layout& L = rp.layout();
+  const Scene& s = L.scene();
+  for (int i = 0; i < static_cast<int>(s.robots.size()); ++i) {
+    for (int t = 1; t <= L.steps(); ++t)
+      for (int c : {kVx, kVy, kOmega}) z[L.state_index(i, t, c)] = tiny(rng);
+    if (!L.has_floor_friction(i)) continue;
+    const int K = s.robots[i].friction_edges;
+    for (int t = 0; t < L.steps(); ++t) {
+      const double vx = z[L.state_index(i, t + 1, kVx)], vy = z[L.state_index(i, t + 1, kVy)];
+      double lowest = kInf;
+      for (int k = 0; k < K; ++k) {
+        const auto d = edge_direction(k, K);
+        lowest = std::min(lowest, d[0] * vx + d[1] * vy);
+        z[L.beta_index(i, t, k)] = pos(rng);
+      }
+      z[L.floor_gamma_index(i, t)] = -lowest + (t % 2 ? 1e-9 : 0.0);
+    }
+  }
+  for (int p = 0; p < static_cast<int>(s.pairs.size()); ++p)
+    if (L.has_contact(p))
+      for (int t = 0; t < L.steps(); ++t) z[L.contact_gamma_index(p, t)] = std::abs(tiny(rng));
+  return z;
+}
+
+// Robots almost touching at every state t >= 1 (gap 1e-7 for every pair, for
+// up to three robots), gap unknowns set to the gaps, contact forces nonzero.
+Vector contact_point(const RobotProblem& rp, unsigned seed) {
+  Vector z = random_point(rp, seed);
+  std::mt19937 rng(seed + 2000);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), angle(0.0, 2.0 * std::numbers::pi),
+      force(0.5, 2.0), slip(0.0, 1.0);
+  const Layout& L = rp.layout();
+  const Scene& s = L.scene();
+  const int nr = static_cast<int>(s.robots.size());
+  constexpr double kGap = 1e-7;
+  auto R = [&](int i) { return s.robots[i].radius; };
+  for (int t = 1; t <= L.steps(); ++t) {
+    double p[3][2] = {};
+    p[0][0] = u(rng);
+    p[0][1] = u(rng);
+    if (nr >= 2) {
+      const double th = angle(rng), d = R(0) + R(1) + kGap;
+      p[1][0] = p[0][0] + d * std::cos(th);
+      p[1][1] = p[0][1] + d * std::sin(th);
+    }
+    if (nr >= 3) {  // intersection of the circles around robots 0 and 1
+      const double d01 = std::hypot(p[1][0] - p[0][0], p[1][1] - p[0][1]);
+      const double r0 = R(0) + R(2) + kGap, r1 = R(1) + R(2) + kGap;
+      const double a = (r0 * r0 - r1 * r1 + d01 * d01) / (2 * d01);
+      const double h = std::sqrt(r0 * r0 - a * a);
+      const double ex = (p[1][0] - p[0][0]) / d01, ey = (p[1][1] - p[0][1]) / d01;
+      p[2][0] = p[0][0] + a * ex - h * ey;
+      p[2][1] = p[0][1] + a * ey + h * ex;
+    }
+    for (int i = 0; i < std::min(nr, 3); ++i) {
+      z[L.state_index(i, t, kX)] = p[i][0];
+      z[L.state_index(i, t, kY)] = p[i][1];
+    }
+    for (int q = 0; q < static_cast<int>(s.pairs.size()); ++q) {
+      const Pair& pr = s.pairs[q];
+      if (pr.i >= 3 || pr.j >= 3) continue;
+      const double gap = std::hypot(p[pr.j][0] - p[pr.i][0], p[pr.j][1] - p[pr.i][1]) -
+                          R(pr.i) - R(pr.j);
+      EXPECT_NEAR(gap, kGap, 1e-12);  // the construction itself
+      z[L.gap_index(q, t)] = gap;
+    }
+  }
+  for (int q = 0; q < static_cast<int>(s.pairs.size()); ++q) {
+    if (!L.has_contact(q)) continue;
+    for (int t = 0; t < L.steps(); ++t) {
+      z[L.normal_force_index(q, t)] = force(rng);
+      z[L.alpha1_index(q, t)] = slip(rng);
+      z[L.alpha2_index(q, t)] = slip(rng);
+      z[L.contact_gamma_index(q, t)] = slip(rng);
+    }
+  }
+  return z;
+}
+
+Vector random_multipliers(int m, unsigned seed) {
+  std::mt19937 rng(seed + 3000);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Vector lambda(m);
+  for (int r = 0; r < m; ++r) lambda[r] = u(rng);
+  return lambda;
+}
+
+void expect_exact_derivatives(const RobotProblem& rp, const Vector& z, unsigned seed) {
+  const Vector lambda = random_multipliers(rp.program().num_constraints(), seed);
+  const double sigma = 0.5 + (seed % 7) * 0.25;
+  test_support::expect_exact_derivatives(check_derivatives(rp.program(), z, sigma, lambda), kTol);
+}
+
+std::string family_name(Family f) {
+  switch (f) {
+    case Family::kKinematics: return "Kinematics";
+    case Family::kDynamics: return "Dynamics";
+    case Family::kFloorFriction: return "FloorFriction";
+    case Family::kGap: return "Gap";
+    case Family::kNonpenetration: return "Nonpenetration";
+    case Family::kContactFriction: return "ContactFriction";
+    case Family::kAvoidance: return "Avoidance";
+    case Family::kBounds: return "Bounds";
+  }
+  return "Unknown";
+}
+
+// Runs the three kinds of points (two random seeds) on one problem.
+void check_all_points(const RobotProblem& rp, unsigned base_seed) {
+  for (unsigned seed : {base_seed, base_seed + 17}) {
+    SCOPED_TRACE("random point, seed " + std::to_string(seed));
+    expect_exact_derivatives(rp, random_point(rp, seed), seed);
+  }
+  {
+    SCOPED_TRACE("near the friction kink");
+    expect_exact_derivatives(rp, kink_point(rp, base_seed + 5), base_seed + 5);
+  }
+  {
+    SCOPED_TRACE("near contact");
+    expect_exact_derivatives(rp, contact_point(rp, base_seed + 9), base_seed + 9);
+  }
+}
+
+// ------------------------------------------------------------- tests ---
+
+class ModelFamilyDerivatives : public testing::TestWithParam<Family> {};
+
+TEST_P(ModelFamilyDerivatives, MatchFiniteDifferencesOnSmallScenes) {
+  unsigned seed = 11 + 100 * static_cast<unsigned>(GetParam());
+  for (const auto& [name, scene] : small_scenes()) {
+    SCOPED_TRACE("scene " + name);
+    const RobotProblem rp(scene, {GetParam()});
+    check_all_points(rp, seed++);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Model, ModelFamilyDerivatives, testing::ValuesIn(all_families()),
+                         [](const testing::TestParamInfo<Family>& info) {
+                           return family_name(info.param);
+                         });
+
+// The family checks above prove nothing about a family that adds nothing:
+// each one must change the program (rows, nonzeros, pairs or bounds) in at
+// least one of the scenes it was checked on.
+TEST(ModelFamilies, EveryFamilyContributesToTheCheckedScenes) {
+  auto signature = [](const RobotProblem& rp) {
+    const auto& P = rp.program();
+    std::ostringstream os;
+    os << P.num_constraints() << ' ' << P.jacobian_pattern().size() << ' '
+       << P.hessian_pattern().size() << ' ' << P.num_complementarity_pairs() << ' '
+       << P.num_monomials() << ' ' << P.variable_lower().transpose() << ' '
+       << P.variable_upper().transpose();
+    return os.str();
+  };
+  for (Family f : all_families()) {
+    if (f == Family::kDynamics) continue;
+    bool changed = false;
+    for (const auto& [name, scene] : small_scenes()) {
+      const RobotProblem base(scene, {Family::kDynamics}), with(scene, {f});
+      changed = changed || signature(base) != signature(with);
+    }
+    EXPECT_TRUE(changed) << family_name(f) << " adds nothing to any checked scene";
+  }
+  // The dynamics rows exist on their own (3 per robot and interval).
+  const Scene s = contact_pair_scene();
+  EXPECT_EQ(RobotProblem(s, {Family::kDynamics}).program().num_constraints(), 3 * 2 * s.steps);
+}
+
+TEST(ModelFullDerivatives, ThreeRobotContactScene) {
+  const RobotProblem rp(three_contact_scene(4), all_families());
+  check_all_points(rp, 4242);
+  // The straight-line guess is a point like any other.
+  SCOPED_TRACE("straight-line guess");
+  expect_exact_derivatives(rp, rp.straight_line_guess(3.0), 77);
+}
+
+// ------------------------------------------- Ipopt's derivative checker ---
+
+// Wraps an Nlp and shifts one Jacobian value: the negative control proving
+// that Ipopt's checker, run as below, does report errors.
+class ShiftedJacobian : public test_support::ForwardingNlp {
+ public:
+  using ForwardingNlp::ForwardingNlp;
+
+ private:
+  bool do_jacobian(const ConstVectorRef& z, VectorRef v) const override {
+    if (!inner_.jacobian(z, v)) return false;
+    v[v.size() / 2] += 0.5;
+    return true;
+  }
+};
+
+// Ipopt's derivative test (`order`: first-order or second-order) at x0, no iterations.
+// Returns what Ipopt printed on stdout.
+std::string ipopt_derivative_test(const Nlp& nlp, const Vector& x0, const std::string& order) {
+  const Settings settings = Settings::load(default_settings_path());
+  auto options = ipopt_options(settings);
+  for (const IpoptOption& o : std::vector<IpoptOption>{{"derivative_test", order, "test"},
+                                                       {"derivative_test_print_all", "no", "test"},
+                                                       {"max_iter", "0", "test"},
+                                                       {"print_level", "5", "test"}})
+    options.push_back(o);
+  IpoptSolver solver(options);
+  NlpPoint start;
+  start.z = x0;
+  testing::internal::CaptureStdout();
+  solver.solve(nlp, start);
+  std::fflush(stdout);
+  return testing::internal::GetCapturedStdout();
+}
+
+TEST(ModelIpoptDerivativeTest, TwoRobotContactSceneHasNoErrors) {
+  // Two robots heading for each other along x (slightly offset), in contact mode.
+  Robot a = make_robot("a", 0.5, 1.0, 0.2, 5.0, 0.0, 0.0, 4);
+  Robot b = make_robot("b", 0.45, 1.2, 0.25, 6.0, 3.0, 0.3, 5);
+  a.target.lower = {3, 0.3, -kInf, 0, 0, -kInf};
+  a.target.upper = {3, 0.3, kInf, 0, 0, kInf};
+  b.target.lower = {0, 0, -kInf, 0, 0, -kInf};
+  b.target.upper = {0, 0, kInf, 0, 0, kInf};
+  const Scene scene = make_scene("two_contact", 5, {a, b}, PairMode::kContact, 0.3);
+  const RobotProblem rp(scene);
+  const ElasticNlp elastic(rp.program(), ElasticFormulation::kLumped, 10.0);
+  const Vector x0 = elastic.lift(rp.straight_line_guess(4.0));
+
+  const std::string out = ipopt_derivative_test(elastic, x0, "second-order");
+  EXPECT_NE(out.find("Starting derivative checker for second derivatives"), std::string::npos)
+      << out;
+  EXPECT_NE(out.find("No errors detected by derivative checker."), std::string::npos) << out;
+  EXPECT_EQ(out.find("Derivative checker detected"), std::string::npos) << out;
+
+  // Negative control: the same run on a corrupted Jacobian reports errors.
+  const std::string bad = ipopt_derivative_test(ShiftedJacobian(elastic), x0, "first-order");
+  EXPECT_NE(bad.find("Derivative checker detected"), std::string::npos) << bad;
+  EXPECT_EQ(bad.find("No errors detected by derivative checker."), std::string::npos);
+}
+
+}  // namespace
+}  // namespace disco
