@@ -16,6 +16,7 @@
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -63,8 +64,11 @@ int run_solve(const SolveOptions& o) {
     spdlog::info("model: {} variables, {} constraints, {} complementarity pairs; {} threads",
                  size.variables, size.constraints, size.complementarity_pairs,
                  omp_get_max_threads());
-    if (const auto lb = preview.lower_bound())
-      spdlog::info("lower bound (each robot alone): {:.6f} s", *lb);
+    if (const auto lb = preview.lower_bound(); lb && std::isfinite(*lb)) {
+      spdlog::info("lower bound (robots without contact partners, each alone): {:.6f} s", *lb);
+    } else {
+      spdlog::info("lower bound: none (every robot can be pushed, or has no closed form)");
+    }
   }
   spdlog::info("{:>3} {:<11} {:>10} {:>10} {:<17} {:>9} {:>9} {:>4} {:>5} {:>7}", "#", "phase",
                "bound[s]", "T_f[s]", "status", "compl", "viol", "nlp", "iter", "sec");
@@ -82,7 +86,7 @@ int run_solve(const SolveOptions& o) {
   if (run.solved()) {
     spdlog::info("solved: T_f = {:.6f} s{}; certificate: violation {:.1e}, complementarity {:.1e}",
                  run.T_f(),
-                 lb && *lb > 0 ? fmt::format(" ({:+.3f} % from the lower bound)",
+                 lb && *lb > 0 && std::isfinite(*lb) ? fmt::format(" ({:+.3f} % from the lower bound)",
                                              100.0 * (run.T_f() - *lb) / *lb)
                                : std::string(),
                  run.info.certificate.max_violation, run.info.certificate.max_complementarity);

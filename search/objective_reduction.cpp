@@ -55,9 +55,9 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
   };
 
   // 1. Feasibility at a fixed, generous horizon.
-  const auto lb = problem.lower_bound();
+  const auto scale = problem.reference_time();
   double T = cfg.horizon_min;
-  if (lb && std::isfinite(*lb)) T = std::max(T, cfg.horizon_factor * *lb);
+  if (scale) T = std::max(T, cfg.horizon_factor * *scale);
   for (int attempt = 0; attempt < 3 && !out.found; ++attempt, T *= 2.0) {
     problem.fix_horizon(T);
     const Vector guess = guess_hint.size() > 0 ? guess_hint : problem.straight_line_guess(T);

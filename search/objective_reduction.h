@@ -1,7 +1,8 @@
 // disco — the paper's inexact objective reduction (Section IV-B, last
 // paragraph), from one start.
 //
-//   1. Feasibility: fix T_f = max(horizon_min, horizon_factor * LB) and solve
+//   1. Feasibility: fix T_f = max(horizon_min, horizon_factor * reference
+//      time: the slowest robot's straight move alone) and solve
 //      the elastic MPCC from the guess (the objective is then constant). If it
 //      is not solved, double T_f and try again (three times at most).
 //   2. Reduction: with r = rate, require T_f <= (1 - r) T_best, warm-started

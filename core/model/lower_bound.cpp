@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "core/util/numbers.h"
 
@@ -23,7 +24,7 @@ bool straight_move_is_optimal(const Robot& rb, double ux, double uy) {
   return std::abs(std::abs(ux) - std::abs(uy)) < kTol;
 }
 
-std::optional<double> robot_lower_bound(const Robot& rb, double gravity) {
+std::optional<double> robot_straight_time(const Robot& rb, double gravity) {
   const auto& s = rb.start;
   if (s[kVx] != 0.0 || s[kVy] != 0.0) return std::nullopt;
   const auto& lo = rb.target.lower;
@@ -56,11 +57,26 @@ std::optional<double> robot_lower_bound(const Robot& rb, double gravity) {
 }
 
 std::optional<double> scene_lower_bound(const Scene& scene) {
-  double best = 0.0;
+  std::vector<bool> pushable(scene.robots.size(), false);
+  for (const auto& p : scene.pairs) {
+    if (p.mode != PairMode::kContact) continue;
+    pushable[p.i] = pushable[p.j] = true;
+  }
+  std::optional<double> best;
+  for (size_t i = 0; i < scene.robots.size(); ++i) {
+    if (pushable[i]) continue;
+    const auto t = robot_straight_time(scene.robots[i], scene.gravity);
+    if (!t) return std::nullopt;  // a robot without a closed form: no bound claimed
+    best = std::max(best.value_or(0.0), *t);
+  }
+  return best;
+}
+
+std::optional<double> scene_reference_time(const Scene& scene) {
+  std::optional<double> best;
   for (const auto& rb : scene.robots) {
-    const auto b = robot_lower_bound(rb, scene.gravity);
-    if (!b) return std::nullopt;
-    best = std::max(best, *b);
+    const auto t = robot_straight_time(rb, scene.gravity);
+    if (t && std::isfinite(*t)) best = std::max(best.value_or(0.0), *t);
   }
   return best;
 }

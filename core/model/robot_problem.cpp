@@ -70,6 +70,8 @@ double RobotProblem::horizon(const ConstVectorRef& z) const {
 
 std::optional<double> RobotProblem::lower_bound() const { return scene_lower_bound(scene_); }
 
+std::optional<double> RobotProblem::reference_time() const { return scene_reference_time(scene_); }
+
 Vector RobotProblem::straight_line_guess(double seconds) const {
   const Scene& s = layout_.scene();  // model units
   const int N = s.steps, nr = static_cast<int>(s.robots.size());

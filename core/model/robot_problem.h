@@ -52,7 +52,8 @@ class RobotProblem {
   void fix_horizon(double seconds);
   void limit_horizon(double max_seconds);  // T_f in [minimum, max_seconds]
   double horizon(const ConstVectorRef& z) const;  // T_f of a point, seconds
-  std::optional<double> lower_bound() const;      // seconds
+  std::optional<double> lower_bound() const;      // seconds (core/model/lower_bound.h)
+  std::optional<double> reference_time() const;   // seconds: a scale, not a bound
 
   // The straight-line guess for horizon T: smoothstep positions from the start
   // to the nearest target point, velocities consistent with the kinematics,

@@ -37,7 +37,7 @@ json solution_json(const RobotProblem& problem, const Vector& z, const SolutionI
   doc["N_t"] = N;
   doc["h"] = has ? json(problem.horizon(z) / N) : json(nullptr);
   doc["g"] = si.gravity;
-  doc["lower_bound"] = lb ? json(*lb) : json(nullptr);
+  doc["lower_bound"] = lb ? bound(*lb) : json(nullptr);
   doc["model"] = {{"variables", size.variables},
                   {"constraints", size.constraints},
                   {"complementarity_pairs", size.complementarity_pairs}};
@@ -138,6 +138,10 @@ json solution_json(const RobotProblem& problem, const Vector& z, const SolutionI
       jr["contact_x"] = cx;
       jr["contact_y"] = cy;
       jr["contact_torque"] = ct;
+    } else {
+      for (const char* key : {"x", "y", "phi", "vx", "vy", "omega", "Fx", "Fy", "friction_x",
+                              "friction_y", "contact_x", "contact_y", "contact_torque"})
+        jr[key] = nullptr;
     }
     robots.push_back(jr);
   }
