@@ -37,6 +37,7 @@
 #include "core/model/scene_yaml.h"
 #include "core/model/solution.h"
 #include "search/solve_scene.h"
+#include "tests/test_support_model.h"
 
 namespace disco {
 namespace {
@@ -746,19 +747,7 @@ TEST(SolutionFile, AvoidSceneMatchesThePhysicsInSiUnits) {
 
 TEST(SolutionFile, SceneWithoutSolutionHasStatusAndNullTrajectories) {
   // Two robots with the same target point (avoid pairs): no feasible point exists.
-  const Written w = solve_and_write(R"(
-scenario: same_target
-steps: 10
-defaults: {radius: 0.5, mass: 1.0, mu: 0.2, force_max: 5.0, K: 8}
-robots:
-  - name: a
-    start: {x: 0, y: 0}
-    target: {x: 3, y: 0, vx: 0, vy: 0}
-  - name: b
-    start: {x: 0, y: 3}
-    target: {x: 3, y: 0, vx: 0, vy: 0}
-)",
-                                    "same_target");
+  const Written w = solve_and_write(model_test::kSameTargetScene, "same_target");
   EXPECT_FALSE(w.run.solved());
   EXPECT_EQ(w.run.z.size(), 0);
   const json& doc = w.read;

@@ -5,24 +5,13 @@
 #include "core/config/solver_settings.h"
 #include "core/model/scene_yaml.h"
 #include "search/solve_scene.h"
+#include "tests/test_support_model.h"
 
 namespace disco {
 namespace {
 
 TEST(SolveOutcomes, TwoRobotsWithTheSameTargetAreInfeasible) {
-  const Scene scene = parse_scene(R"(
-scenario: same_target
-steps: 10
-defaults: {radius: 0.5, mass: 1.0, mu: 0.2, force_max: 5.0, K: 8}
-robots:
-  - name: a
-    start: {x: 0, y: 0}
-    target: {x: 3, y: 0, vx: 0, vy: 0}
-  - name: b
-    start: {x: 0, y: 3}
-    target: {x: 3, y: 0, vx: 0, vy: 0}
-)",
-                                  "same_target.yaml");
+  const Scene scene = parse_scene(model_test::kSameTargetScene, "same_target.yaml");
   const SceneSolve run = solve_scene(scene, Settings::load(default_settings_path()));
   EXPECT_FALSE(run.solved());
   EXPECT_EQ(run.info.status, "infeasible");

@@ -16,6 +16,20 @@
 
 namespace disco::model_test {
 
+// Two robots whose targets are the same point: no feasible point exists.
+inline constexpr const char* kSameTargetScene = R"(
+scenario: same_target
+steps: 10
+defaults: {radius: 0.5, mass: 1.0, mu: 0.2, force_max: 5.0, K: 8}
+robots:
+  - name: a
+    start: {x: 0, y: 0}
+    target: {x: 3, y: 0, vx: 0, vy: 0}
+  - name: b
+    start: {x: 0, y: 3}
+    target: {x: 3, y: 0, vx: 0, vy: 0}
+)";
+
 // A robot in SI units with the parser's defaults (inertia 0.5 M R^2,
 // damping 0.1 R), at rest at (x, y).
 inline Robot make_robot(const std::string& name, double radius, double mass, double mu,
