@@ -77,7 +77,10 @@ int run_solve(const SolveOptions& o) {
     spdlog::info("{:>3} {:<11} {:>10.5f} {:>10.5f} {:<17} {:>9.1e} {:>9.1e} {:>4} {:>5} {:>7.3f}{}",
                  ++count, r.phase, r.bound, r.T_f, to_string(r.status),
                  r.certificate.max_complementarity, r.certificate.max_violation, r.nlp_solves,
-                 r.iterations, r.seconds, r.improved ? "  *" : "");
+                 r.iterations, r.seconds,
+                 r.improved                          ? std::string("  *")
+                 : r.status == MpccStatus::kFailed ? "  (Ipopt: " + ipopt_status_name(r.ipopt_status) + ")"
+                                                     : std::string());
   };
   const SceneSolve run = solve_scene(scene, settings, on_solve);
   const std::string path = out_dir + "/solution.json";

@@ -45,7 +45,7 @@ ReductionSettings reduction_settings(const Settings& settings);  // `feasibility
 
 // One elastic-mode solve (possibly several Ipopt solves inside).
 struct SolveRecord {
-  std::string phase;   // "feasibility", "reduction" or "minimize"
+  std::string phase;   // "feasibility", "reduction", "fixed step" or "minimize"
   double bound = 0.0;  // s: the fixed T_f (feasibility) or the upper bound on T_f
   double T_f = 0.0;    // s: at the solve's end
   MpccStatus status = MpccStatus::kFailed;
