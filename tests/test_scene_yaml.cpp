@@ -9,6 +9,7 @@
 
 #include "core/model/scene_yaml.h"
 #include "core/util/errors.h"
+#include "tests/test_support_messages.h"
 
 namespace disco {
 namespace {
@@ -67,9 +68,7 @@ void expect_error(const std::string& text, int line, const std::string& key,
   const std::string msg = error_of(text, overrides);
   const std::string where =
       std::string(kFile) + ":" + std::to_string(line) + ": key '" + key + "': ";
-  EXPECT_EQ(msg.rfind(where, 0), 0u) << "expected prefix: " << where << "\n     got: " << msg;
-  EXPECT_NE(msg.find(fragment), std::string::npos)
-      << "expected fragment: " << fragment << "\n     got: " << msg;
+  test_support::expect_prefix(msg, where, fragment);
 }
 
 // Same, for an error located in an override: "--set: key 'KEY': ".
@@ -77,17 +76,10 @@ void expect_set_error(const std::string& text, const std::vector<std::string>& o
                       const std::string& key, const std::string& fragment) {
   const std::string msg = error_of(text, overrides);
   const std::string where = "--set: key '" + key + "': ";
-  EXPECT_EQ(msg.rfind(where, 0), 0u) << "expected prefix: " << where << "\n     got: " << msg;
-  EXPECT_NE(msg.find(fragment), std::string::npos)
-      << "expected fragment: " << fragment << "\n     got: " << msg;
+  test_support::expect_prefix(msg, where, fragment);
 }
 
-std::string temp_path(const std::string& name) {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  return (std::filesystem::temp_directory_path() /
-          ("disco_" + std::string(info->name()) + "_" + name))
-      .string();
-}
+using test_support::temp_path;
 
 TEST(SceneYaml, BaseSceneIsValid) {
   const Scene s = parse_scene(kBase, kFile);

@@ -9,6 +9,7 @@
 
 #include "core/config/settings.h"
 #include "core/util/errors.h"
+#include "tests/test_support_messages.h"
 
 namespace disco {
 namespace {
@@ -47,18 +48,9 @@ std::string error_of(F&& f) {
   return "no exception";
 }
 
-void expect_prefix(const std::string& msg, const std::string& prefix, const std::string& fragment) {
-  EXPECT_EQ(msg.rfind(prefix, 0), 0u) << "expected prefix: " << prefix << "\n     got: " << msg;
-  EXPECT_NE(msg.find(fragment), std::string::npos)
-      << "expected fragment: " << fragment << "\n     got: " << msg;
-}
+using test_support::expect_prefix;
 
-std::string temp_path(const std::string& name) {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  return (std::filesystem::temp_directory_path() /
-          ("disco_" + std::string(info->name()) + "_" + name))
-      .string();
-}
+using test_support::temp_path;
 
 TEST(Settings, TypedValues) {
   const Settings s = make();

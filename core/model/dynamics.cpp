@@ -4,23 +4,20 @@ namespace disco {
 
 void add_dynamics(Layout& L, PolynomialProgram& P) {
   const Scene& s = L.scene();
-  const int nr = static_cast<int>(s.robots.size());
-  for (int t = 0; t < L.steps(); ++t) {
-    for (int i = 0; i < nr; ++i) {
-      const Robot& rb = s.robots[i];
-      for (int a = 0; a < 2; ++a) {
-        const int velocity = a == 0 ? kVx : kVy;
-        const int r = P.add_row(0.0, 0.0);
-        P.add(r, rb.mass, L.state(i, t + 1, velocity) - L.state(i, t, velocity));
-        P.add(r, -1.0, L.step(), L.force(i, t, a));
-        L.set_momentum_row(i, t, a, r);
-      }
+  L.for_each_robot_step([&](int t, int i) {
+    const Robot& rb = s.robots[i];
+    for (int a = 0; a < 2; ++a) {
+      const int velocity = a == 0 ? kVx : kVy;
       const int r = P.add_row(0.0, 0.0);
-      P.add(r, rb.inertia, L.state(i, t + 1, kOmega) - L.state(i, t, kOmega));
-      P.add(r, rb.damping * rb.mass * s.gravity, L.step(), L.state(i, t + 1, kOmega));
-      L.set_momentum_row(i, t, 2, r);
+      P.add(r, rb.mass, L.state(i, t + 1, velocity) - L.state(i, t, velocity));
+      P.add(r, -1.0, L.step(), L.force(i, t, a));
+      L.set_momentum_row(i, t, a, r);
     }
-  }
+    const int r = P.add_row(0.0, 0.0);
+    P.add(r, rb.inertia, L.state(i, t + 1, kOmega) - L.state(i, t, kOmega));
+    P.add(r, rb.damping * rb.mass * s.gravity, L.step(), L.state(i, t + 1, kOmega));
+    L.set_momentum_row(i, t, 2, r);
+  });
 }
 
 }  // namespace disco

@@ -3,19 +3,16 @@
 namespace disco {
 
 void add_kinematics(Layout& L, PolynomialProgram& P) {
-  const int nr = static_cast<int>(L.scene().robots.size());
   constexpr int kPosition[3] = {kX, kY, kPhi};
   constexpr int kVelocity[3] = {kVx, kVy, kOmega};
-  for (int t = 0; t < L.steps(); ++t) {
-    for (int i = 0; i < nr; ++i) {
-      for (int c = 0; c < 3; ++c) {
-        const int r = P.add_row(0.0, 0.0);
-        P.add(r, 1.0, L.state(i, t + 1, kPosition[c]));
-        P.add(r, -1.0, L.state(i, t, kPosition[c]));
-        P.add(r, -1.0, L.step(), L.state(i, t + 1, kVelocity[c]));
-      }
+  L.for_each_robot_step([&](int t, int i) {
+    for (int c = 0; c < 3; ++c) {
+      const int r = P.add_row(0.0, 0.0);
+      P.add(r, 1.0, L.state(i, t + 1, kPosition[c]));
+      P.add(r, -1.0, L.state(i, t, kPosition[c]));
+      P.add(r, -1.0, L.step(), L.state(i, t + 1, kVelocity[c]));
     }
-  }
+  });
 }
 
 }  // namespace disco

@@ -66,6 +66,21 @@ class Layout {
   int alpha2_index(int pair, int t) const { return pairs_[pair].a2[t]; }
   int contact_gamma_index(int pair, int t) const { return pairs_[pair].gamma[t]; }
 
+  // The per-step loops every constraint family runs: f(t, robot) for every
+  // interval t = 0..N-1 and robot; f(t, pair) for every interval and contact
+  // pair. Families state only what holds at one step.
+  template <class F>
+  void for_each_robot_step(F&& f) const {
+    for (int t = 0; t < steps(); ++t)
+      for (int i = 0; i < static_cast<int>(scene_.robots.size()); ++i) f(t, i);
+  }
+  template <class F>
+  void for_each_contact_step(F&& f) const {
+    for (int t = 0; t < steps(); ++t)
+      for (int p = 0; p < static_cast<int>(scene_.pairs.size()); ++p)
+        if (has_contact(p)) f(t, p);
+  }
+
   // Momentum rows (axis 0: x, 1: y, 2: rotation) of robot i over interval t;
   // -1 until core/model/dynamics.h creates them.
   int momentum_row(int robot, int t, int axis) const;

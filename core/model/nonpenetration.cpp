@@ -3,21 +3,16 @@
 namespace disco {
 
 void add_nonpenetration(Layout& L, PolynomialProgram& P) {
-  const Scene& s = L.scene();
-  const int np = static_cast<int>(s.pairs.size());
-  for (int t = 0; t < L.steps(); ++t) {
-    for (int p = 0; p < np; ++p) {
-      if (!L.has_contact(p)) continue;
-      const Pair& pr = s.pairs[p];
-      P.add_pair(ComplementaritySide::variable(L.normal_force_index(p, t)),
-                 ComplementaritySide::variable(L.gap_index(p, t + 1)));
-      for (int a = 0; a < 2; ++a) {
-        // Rows are M dv - impulses: the impulse on j enters with a minus.
-        P.add(L.momentum_row(pr.j, t, a), -1.0, L.step(), L.normal_force(p, t), L.normal(p, t, a));
-        P.add(L.momentum_row(pr.i, t, a), 1.0, L.step(), L.normal_force(p, t), L.normal(p, t, a));
-      }
+  L.for_each_contact_step([&](int t, int p) {
+    const Pair& pr = L.scene().pairs[p];
+    P.add_pair(ComplementaritySide::variable(L.normal_force_index(p, t)),
+               ComplementaritySide::variable(L.gap_index(p, t + 1)));
+    for (int a = 0; a < 2; ++a) {
+      // Rows are M dv - impulses: the impulse on j enters with a minus.
+      P.add(L.momentum_row(pr.j, t, a), -1.0, L.step(), L.normal_force(p, t), L.normal(p, t, a));
+      P.add(L.momentum_row(pr.i, t, a), 1.0, L.step(), L.normal_force(p, t), L.normal(p, t, a));
     }
-  }
+  });
 }
 
 }  // namespace disco
