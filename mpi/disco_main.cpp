@@ -1,6 +1,8 @@
 // disco — the command-line tool.
 //
 //   disco solve SCENE.yaml [--out DIR] [--threads N] [--settings FILE] [--set KEY=VALUE ...]
+//   disco search CONFIG... [--starts N] [--seed S] [--time-limit SEC] [--out DIR] [--resume]
+//                [--threads N] [--settings FILE] [--set KEY=VALUE ...]   (mpi/coordinator.h)
 //
 // Finds a feasible point at a large fixed T_f, then runs the paper's inexact
 // objective reduction from it (search/objective_reduction.h), logging one line
@@ -11,6 +13,7 @@
 // Exit status: 0 a certified solution was written; 3 the run ended without one
 // (status infeasible, failed or elastic_not_tight, still written); 2 bad input
 // or usage (the message names the file, line and key).
+#include <mpi.h>
 #include <omp.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
@@ -26,11 +29,50 @@
 #include "core/config/solver_settings.h"
 #include "core/model/scene_yaml.h"
 #include "core/util/errors.h"
+#include "mpi/coordinator.h"
 #include "search/solve_scene.h"
 
 namespace {
 
 using namespace disco;
+
+// One thread unless asked: evaluation is a small share of a solve, and
+// parallelism across starts comes from MPI ranks (ranks x threads <= cores).
+void set_threads(int threads) {
+  if (threads > 0) {
+    omp_set_num_threads(threads);
+  } else if (std::getenv("OMP_NUM_THREADS") == nullptr) {
+    omp_set_num_threads(1);
+  }
+}
+
+// `disco search`: MPI is initialised here and only here.
+int run_search_command(const SearchOptions& o, int threads, int& argc, char**& argv) {
+  int provided = 0;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_SERIALIZED, &provided);
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  int code = 0;
+  if (size > 1 && provided < MPI_THREAD_SERIALIZED) {
+    if (rank == 0) spdlog::error("error: the MPI library does not provide MPI_THREAD_SERIALIZED");
+    code = 1;
+  } else {
+    if (rank != 0) spdlog::set_level(spdlog::level::warn);  // rank 0 reports
+    set_threads(threads);
+    try {
+      code = run_search(o);
+    } catch (const InputError& e) {
+      if (rank == 0) spdlog::error("error: {}", e.what());
+      code = 2;
+    } catch (const std::exception& e) {
+      spdlog::error("internal error on rank {}: {}", rank, e.what());
+      code = 1;
+    }
+  }
+  MPI_Finalize();
+  return code;
+}
 
 struct SolveOptions {
   std::string scene;
@@ -46,13 +88,7 @@ int run_solve(const SolveOptions& o) {
   Settings settings = Settings::load(o.settings);
   for (const auto& s : settings_sets) settings.apply_override(s);
   const Scene scene = load_scene(o.scene, scene_sets);
-  // One thread unless asked: evaluation is a small share of a solve, and
-  // parallelism across starts comes from MPI ranks (ranks x threads <= cores).
-  if (o.threads > 0) {
-    omp_set_num_threads(o.threads);
-  } else if (std::getenv("OMP_NUM_THREADS") == nullptr) {
-    omp_set_num_threads(1);
-  }
+  set_threads(o.threads);
   const std::string out_dir = o.out.empty() ? "out/" + scene.name : o.out;
   std::filesystem::create_directories(out_dir);
 
@@ -121,11 +157,29 @@ int main(int argc, char** argv) {
   cmd->add_option("--set", solve.sets,
                   "Override KEY=VALUE: a settings key (elastic.zeta_max=1e8, ipopt.tol=1e-10) "
                   "or a scene key prefixed with 'scene.' (scene.steps=50)");
+  SearchOptions search;
+  search.settings = default_settings_path();
+  int search_threads = 0;
+  auto* scmd = app.add_subcommand(
+      "search", "Multi-start search over MPI ranks (run under mpirun, or as one process)");
+  scmd->add_option("configs", search.configs, "Scene or benchmark files (YAML)")->required();
+  scmd->add_option("--starts", search.starts, "Starts per scene (replaces the files' counts)")
+      ->check(CLI::PositiveNumber);
+  scmd->add_option("--seed", search.seed, "Seed of the start generator")->capture_default_str();
+  scmd->add_option("--time-limit", search.time_limit, "Seconds for the whole search (0: none)")
+      ->check(CLI::NonNegativeNumber);
+  scmd->add_option("--out", search.out, "Output directory")->capture_default_str();
+  scmd->add_flag("--resume", search.resume, "Skip the starts already in OUT/runs.jsonl");
+  scmd->add_option("--threads", search_threads, "OpenMP threads per rank (default 1)")
+      ->check(CLI::PositiveNumber);
+  scmd->add_option("--settings", search.settings, "Solver settings file")->capture_default_str();
+  scmd->add_option("--set", search.sets, "Override KEY=VALUE (as for solve)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
+  if (scmd->parsed()) return run_search_command(search, search_threads, argc, argv);
   try {
     if (cmd->parsed()) return run_solve(solve);
   } catch (const InputError& e) {

@@ -39,7 +39,7 @@ ReductionSettings reduction_settings(const Settings& s) {
 }
 
 ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
-                                 const ReductionSettings& cfg, const Vector& guess_hint,
+                                 const ReductionSettings& cfg, const GuessFunction& guess,
                                  const SolveCallback& on_solve) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
@@ -60,8 +60,8 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
   if (scale) T = std::max(T, cfg.horizon_factor * *scale);
   for (int attempt = 0; attempt < 3 && !out.found; ++attempt, T *= 2.0) {
     problem.fix_horizon(T);
-    const Vector guess = guess_hint.size() > 0 ? guess_hint : problem.straight_line_guess(T);
-    MpccResult r = solver.solve(problem.program(), guess);
+    const Vector z0 = guess ? guess(T) : problem.straight_line_guess(T);
+    MpccResult r = solver.solve(problem.program(), z0);
     out.feasibility_detail = to_string(r.status);
     out.status = r.status == MpccStatus::kElasticNotTight ? MpccStatus::kInfeasible : r.status;
     const bool ok = r.solved();

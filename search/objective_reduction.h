@@ -70,9 +70,12 @@ struct ReductionResult {
 };
 
 using SolveCallback = std::function<void(const SolveRecord&)>;
+// The initial guess for a feasibility horizon of `seconds` (model-unit z).
+using GuessFunction = std::function<Vector(double seconds)>;
 
+// `guess` defaults to RobotProblem::straight_line_guess.
 ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
-                                 const ReductionSettings& settings, const Vector& guess_hint = {},
+                                 const ReductionSettings& settings, const GuessFunction& guess = {},
                                  const SolveCallback& on_solve = {});
 
 }  // namespace disco

@@ -13,6 +13,7 @@
 #include "core/model/kinematics.h"
 #include "core/model/lower_bound.h"
 #include "core/model/nonpenetration.h"
+#include "core/util/check.h"
 #include "core/util/numbers.h"
 
 namespace disco {
@@ -20,6 +21,80 @@ namespace {
 
 // The smallest horizon allowed, in model time units: keeps h > 0.
 constexpr double kHorizonMin = 1e-3;
+
+// The full guess for horizon T (model units) from the positions q[i][t][x, y,
+// phi], t = 1..N, and the exact start state q[i][0]: velocities consistent with
+// the kinematics, floor friction opposing the motion, forces balancing the
+// momentum rows (clipped to their bounds), gaps from the positions, contact
+// forces zero. Completes the velocity components of q.
+Vector guess_from_positions(const Layout& layout, int num_variables,
+                            std::vector<std::vector<State>>& q, double T) {
+  const Scene& s = layout.scene();  // model units
+  const int N = s.steps, nr = static_cast<int>(s.robots.size());
+  const double h = T / N;
+  Vector z = Vector::Zero(num_variables);
+  z[layout.horizon_index()] = T;
+  for (int i = 0; i < nr; ++i)
+    for (int t = 1; t <= N; ++t) {
+      q[i][t][kVx] = (q[i][t][kX] - q[i][t - 1][kX]) / h;
+      q[i][t][kVy] = (q[i][t][kY] - q[i][t - 1][kY]) / h;
+      q[i][t][kOmega] = (q[i][t][kPhi] - q[i][t - 1][kPhi]) / h;
+      for (int c = 0; c < kStateSize; ++c) z[layout.state_index(i, t, c)] = q[i][t][c];
+    }
+  // Floor friction opposing v^{t+1}, and the force that balances momentum.
+  for (int i = 0; i < nr; ++i) {
+    const Robot& rb = s.robots[i];
+    for (int t = 0; t < N; ++t) {
+      const double vx = q[i][t + 1][kVx], vy = q[i][t + 1][kVy];
+      double friction[2] = {0.0, 0.0};
+      if (layout.has_floor_friction(i)) {
+        int best = 0;
+        double lowest = kInf;
+        for (int k = 0; k < rb.friction_edges; ++k) {
+          const double a = 2.0 * std::numbers::pi * k / rb.friction_edges;
+          const double dv = std::cos(a) * vx + std::sin(a) * vy;
+          if (dv < lowest) lowest = dv, best = k;
+        }
+        const bool moving = std::hypot(vx, vy) > 1e-12;
+        const double beta = moving ? rb.mu * rb.mass * s.gravity : 0.0;
+        const double a = 2.0 * std::numbers::pi * best / rb.friction_edges;
+        z[layout.beta_index(i, t, best)] = beta;
+        z[layout.floor_gamma_index(i, t)] = std::max(0.0, -lowest);
+        friction[0] = beta * std::cos(a);
+        friction[1] = beta * std::sin(a);
+      }
+      double f[2];
+      for (int a = 0; a < 2; ++a) {
+        const int vel = a == 0 ? kVx : kVy;
+        f[a] = rb.mass * (q[i][t + 1][vel] - q[i][t][vel]) / h - friction[a];
+      }
+      const auto& idx = layout.force_indices(i, t);
+      if (rb.force_dims == 2) {
+        for (int a = 0; a < 2; ++a) z[idx[a]] = std::clamp(f[a], -rb.force_max, rb.force_max);
+      } else {
+        const double along = f[0] * rb.force_axis[0] + f[1] * rb.force_axis[1];
+        z[idx[0]] = std::clamp(along, -rb.force_max, rb.force_max);
+      }
+    }
+  }
+  // Gaps from positions; contact multipliers: gamma = |v_T| (others zero).
+  for (int p = 0; p < static_cast<int>(s.pairs.size()); ++p) {
+    const Pair& pr = s.pairs[p];
+    const double R = s.robots[pr.i].radius + s.robots[pr.j].radius;
+    for (int t = 1; t <= N; ++t) {
+      const double nx = q[pr.j][t][kX] - q[pr.i][t][kX], ny = q[pr.j][t][kY] - q[pr.i][t][kY];
+      z[layout.gap_index(p, t)] = std::hypot(nx, ny) - R;
+    }
+    if (!layout.has_contact(p)) continue;
+    for (int t = 0; t < N; ++t) {
+      const double nx = q[pr.j][t][kX] - q[pr.i][t][kX], ny = q[pr.j][t][kY] - q[pr.i][t][kY];
+      const double vt = -ny * (q[pr.j][t + 1][kVx] - q[pr.i][t + 1][kVx]) +
+                        nx * (q[pr.j][t + 1][kVy] - q[pr.i][t + 1][kVy]);
+      z[layout.contact_gamma_index(p, t)] = std::abs(vt);
+    }
+  }
+  return z;
+}
 
 }  // namespace
 
@@ -75,10 +150,6 @@ std::optional<double> RobotProblem::reference_time() const { return scene_refere
 Vector RobotProblem::straight_line_guess(double seconds) const {
   const Scene& s = layout_.scene();  // model units
   const int N = s.steps, nr = static_cast<int>(s.robots.size());
-  const double T = seconds / units_.time, h = T / N;
-  Vector z = Vector::Zero(program_.num_variables());
-  z[layout_.horizon_index()] = T;
-
   // States: t = 0 is the start; positions follow a smoothstep.
   std::vector<std::vector<State>> q(nr, std::vector<State>(N + 1));
   for (int i = 0; i < nr; ++i) {
@@ -89,65 +160,27 @@ Vector RobotProblem::straight_line_guess(double seconds) const {
     for (int t = 1; t <= N; ++t) {
       const double tau = static_cast<double>(t) / N, w = tau * tau * (3.0 - 2.0 * tau);
       for (int c : {kX, kY, kPhi}) q[i][t][c] = rb.start[c] + w * (goal[c] - rb.start[c]);
-      q[i][t][kVx] = (q[i][t][kX] - q[i][t - 1][kX]) / h;
-      q[i][t][kVy] = (q[i][t][kY] - q[i][t - 1][kY]) / h;
-      q[i][t][kOmega] = (q[i][t][kPhi] - q[i][t - 1][kPhi]) / h;
-      for (int c = 0; c < kStateSize; ++c) z[layout_.state_index(i, t, c)] = q[i][t][c];
     }
   }
-  // Floor friction opposing v^{t+1}, and the force that balances momentum.
+  return guess_from_positions(layout_, program_.num_variables(), q, seconds / units_.time);
+}
+
+Vector RobotProblem::guess_from_paths(const std::vector<std::vector<std::array<double, 3>>>& xyphi,
+                                      double seconds) const {
+  const Scene& s = layout_.scene();  // model units
+  const int N = s.steps, nr = static_cast<int>(s.robots.size());
+  DISCO_CHECK(static_cast<int>(xyphi.size()) == nr, "one path per robot");
+  std::vector<std::vector<State>> q(nr, std::vector<State>(N + 1));
   for (int i = 0; i < nr; ++i) {
-    const Robot& rb = s.robots[i];
-    for (int t = 0; t < N; ++t) {
-      const double vx = q[i][t + 1][kVx], vy = q[i][t + 1][kVy];
-      double friction[2] = {0.0, 0.0};
-      if (layout_.has_floor_friction(i)) {
-        int best = 0;
-        double lowest = kInf;
-        for (int k = 0; k < rb.friction_edges; ++k) {
-          const double a = 2.0 * std::numbers::pi * k / rb.friction_edges;
-          const double dv = std::cos(a) * vx + std::sin(a) * vy;
-          if (dv < lowest) lowest = dv, best = k;
-        }
-        const bool moving = std::hypot(vx, vy) > 1e-12;
-        const double beta = moving ? rb.mu * rb.mass * s.gravity : 0.0;
-        const double a = 2.0 * std::numbers::pi * best / rb.friction_edges;
-        z[layout_.beta_index(i, t, best)] = beta;
-        z[layout_.floor_gamma_index(i, t)] = std::max(0.0, -lowest);
-        friction[0] = beta * std::cos(a);
-        friction[1] = beta * std::sin(a);
-      }
-      double f[2];
-      for (int a = 0; a < 2; ++a) {
-        const int vel = a == 0 ? kVx : kVy;
-        f[a] = rb.mass * (q[i][t + 1][vel] - q[i][t][vel]) / h - friction[a];
-      }
-      const auto& idx = layout_.force_indices(i, t);
-      if (rb.force_dims == 2) {
-        for (int a = 0; a < 2; ++a) z[idx[a]] = std::clamp(f[a], -rb.force_max, rb.force_max);
-      } else {
-        const double along = f[0] * rb.force_axis[0] + f[1] * rb.force_axis[1];
-        z[idx[0]] = std::clamp(along, -rb.force_max, rb.force_max);
-      }
-    }
-  }
-  // Gaps from positions; contact multipliers: gamma = |v_T| (others zero).
-  for (int p = 0; p < static_cast<int>(s.pairs.size()); ++p) {
-    const Pair& pr = s.pairs[p];
-    const double R = s.robots[pr.i].radius + s.robots[pr.j].radius;
+    DISCO_CHECK(static_cast<int>(xyphi[i].size()) == N + 1, "a path has N + 1 points");
+    q[i][0] = s.robots[i].start;  // exact: the start is a constant of the model
     for (int t = 1; t <= N; ++t) {
-      const double nx = q[pr.j][t][kX] - q[pr.i][t][kX], ny = q[pr.j][t][kY] - q[pr.i][t][kY];
-      z[layout_.gap_index(p, t)] = std::hypot(nx, ny) - R;
-    }
-    if (!layout_.has_contact(p)) continue;
-    for (int t = 0; t < N; ++t) {
-      const double nx = q[pr.j][t][kX] - q[pr.i][t][kX], ny = q[pr.j][t][kY] - q[pr.i][t][kY];
-      const double vt = -ny * (q[pr.j][t + 1][kVx] - q[pr.i][t + 1][kVx]) +
-                        nx * (q[pr.j][t + 1][kVy] - q[pr.i][t + 1][kVy]);
-      z[layout_.contact_gamma_index(p, t)] = std::abs(vt);
+      q[i][t][kX] = xyphi[i][t][0] / units_.length;
+      q[i][t][kY] = xyphi[i][t][1] / units_.length;
+      q[i][t][kPhi] = xyphi[i][t][2];  // angles are unitless
     }
   }
-  return z;
+  return guess_from_positions(layout_, program_.num_variables(), q, seconds / units_.time);
 }
 
 }  // namespace disco

@@ -12,6 +12,7 @@
 // All times given to or returned by this class are in seconds (SI).
 #pragma once
 
+#include <array>
 #include <optional>
 #include <vector>
 
@@ -60,6 +61,13 @@ class RobotProblem {
   // friction opposing the motion, forces balancing the momentum rows (clipped
   // to their bounds), gaps from the positions, contact forces zero.
   Vector straight_line_guess(double seconds) const;
+  // The same completion for given position paths: xyphi[i][t] = (x, y, phi)
+  // of robot i at t = 0..N, in SI units (metres, radians). Entry t = 0 is not
+  // used: the start state is a constant of the model and is taken exactly.
+  // Everything else (velocities, friction, forces, gaps) follows the paths as
+  // in straight_line_guess, which is this with smoothstep paths.
+  Vector guess_from_paths(const std::vector<std::vector<std::array<double, 3>>>& xyphi,
+                          double seconds) const;
 
  private:
   Scene scene_;

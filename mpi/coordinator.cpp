@@ -1,0 +1,338 @@
+#include "mpi/coordinator.h"
+
+#include <fcntl.h>
+#include <mpi.h>
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+#include <thread>
+
+#include "core/config/settings.h"
+#include "core/config/solver_settings.h"
+#include "core/model/solution.h"
+#include "core/util/errors.h"
+#include "search/run_start.h"
+#include "search/search_plan.h"
+
+namespace disco {
+namespace {
+
+using json = nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+constexpr int kTagWork = 1;  // worker -> rank 0: a result (or the first request)
+constexpr int kTagTask = 2;  // rank 0 -> worker: a task
+constexpr int kTagStop = 3;  // rank 0 -> worker: no more tasks
+
+struct Task {
+  int scene = 0, start = 0;
+  double budget = 0.0;  // s; 0 = none
+};
+
+void send_string(const std::string& s, int dest, int tag) {
+  MPI_Send(s.data(), static_cast<int>(s.size()), MPI_CHAR, dest, tag, MPI_COMM_WORLD);
+}
+
+std::string recv_string(int source, int tag, MPI_Status* status) {
+  MPI_Status probe;
+  MPI_Probe(source, tag, MPI_COMM_WORLD, &probe);
+  int n = 0;
+  MPI_Get_count(&probe, MPI_CHAR, &n);
+  std::string s(static_cast<std::size_t>(n), '\0');
+  MPI_Recv(s.data(), n, MPI_CHAR, probe.MPI_SOURCE, probe.MPI_TAG, MPI_COMM_WORLD, status);
+  return s;
+}
+
+std::string clock_text(double s) {
+  const int t = static_cast<int>(s + 0.5);
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%02d:%02d:%02d", t / 3600, t / 60 % 60, t % 60);
+  return buf;
+}
+
+// Rank 0's view of the search: the tasks still to hand out, and the files.
+// Thread-safe: the coordinator thread and rank 0's own worker share it.
+class Search {
+ public:
+  Search(const SearchPlan& plan, const SearchOptions& options)
+      : plan_(plan), options_(options), t0_(Clock::now()), best_(plan.scenes.size()) {
+    std::filesystem::create_directories(std::filesystem::path(options.out) / "best");
+    const std::string runs = options.out + "/runs.jsonl";
+    std::set<std::pair<int, int>> done;
+    if (options.resume) done = read_done(runs);
+    for (int s = 0; s < static_cast<int>(plan.scenes.size()); ++s)
+      for (int k = 0; k < plan.scenes[s].starts; ++k)
+        if (!done.count({s, k})) pending_.push_back({s, k, 0.0});
+    total_ = plan.total_starts();
+    finished_ = total_ - static_cast<int>(pending_.size());
+    runs_ = std::fopen(runs.c_str(), options.resume ? "a" : "w");
+    if (runs_ == nullptr) throw InputError(runs + ": cannot open for writing");
+    write_best();
+  }
+  ~Search() {
+    if (runs_ != nullptr) std::fclose(runs_);
+  }
+
+  // The next task, or none when all are handed out or the time limit passed.
+  std::optional<Task> next() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (next_ >= pending_.size()) return std::nullopt;
+    const double elapsed = seconds();
+    if (options_.time_limit > 0 && elapsed >= options_.time_limit) {
+      time_limited_ = true;
+      return std::nullopt;
+    }
+    Task t = pending_[next_++];
+    t.budget = plan_.scenes[t.scene].time_limit;
+    if (options_.time_limit > 0) {
+      const double left = options_.time_limit - elapsed;
+      t.budget = t.budget > 0 ? std::min(t.budget, left) : left;
+    }
+    return t;
+  }
+
+  void record(const StartOutcome& o, const json* solution) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const std::string line = o.to_json().dump() + "\n";
+    std::fputs(line.c_str(), runs_);
+    std::fflush(runs_);
+    ::fsync(fileno(runs_));  // a kill (or a crash) loses no finished start
+    ++finished_;
+    const int s = scene_index(o.scene);
+    const bool improved = update(s, o);
+    if (improved && solution != nullptr)
+      write_json_file(options_.out + "/best/" + o.scene + ".json", *solution);
+    write_best();
+    const Best& b = best_[s];
+    const double elapsed = seconds();
+    const int ran_now = finished_ - resumed_;
+    const double eta = ran_now > 0 ? elapsed / ran_now * (total_ - finished_) : 0.0;
+    spdlog::info("[{}/{}] {} start {} (rank {}): {}{} in {:.1f} s | best {} | elapsed {} ETA {}",
+                 finished_, total_, o.scene, o.start, o.rank, o.status,
+                 o.solved() ? fmt::format(" T_f {:.6f}", o.T_f) : std::string(), o.seconds,
+                 b.start >= 0 ? fmt::format("{:.6f} (start {})", b.T_f, b.start)
+                              : std::string("none"),
+                 clock_text(elapsed), clock_text(eta));
+  }
+
+  void finish() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (next_ < pending_.size()) time_limited_ = true;
+    write_best();
+  }
+
+  bool all_solved() const {
+    for (const auto& b : best_)
+      if (b.start < 0) return false;
+    return true;
+  }
+  const SearchPlan& plan() const { return plan_; }
+
+ private:
+  struct Best {
+    int start = -1;
+    double T_f = 0.0;
+    StartOutcome outcome;
+    int run = 0, solved = 0;
+    double first_feasible_s = -1.0, best_s = -1.0;
+  };
+
+  double seconds() const { return std::chrono::duration<double>(Clock::now() - t0_).count(); }
+
+  int scene_index(const std::string& name) const {
+    for (std::size_t s = 0; s < plan_.scenes.size(); ++s)
+      if (plan_.scenes[s].scene.name == name) return static_cast<int>(s);
+    return -1;
+  }
+
+  // Counts the start and returns whether it became the scene's best.
+  bool update(int s, const StartOutcome& o) {
+    if (s < 0) return false;
+    Best& b = best_[s];
+    ++b.run;
+    if (!o.solved()) return false;
+    ++b.solved;
+    if (b.first_feasible_s < 0) b.first_feasible_s = seconds();
+    const bool better = b.start < 0 || o.T_f < b.T_f || (o.T_f == b.T_f && o.start < b.start);
+    if (!better) return false;
+    b.start = o.start;
+    b.T_f = o.T_f;
+    b.outcome = o;
+    b.best_s = seconds();
+    return true;
+  }
+
+  std::set<std::pair<int, int>> read_done(const std::string& path) {
+    std::set<std::pair<int, int>> done;
+    std::ifstream in(path);
+    std::string line;
+    int bad = 0;
+    while (std::getline(in, line)) {
+      if (line.empty()) continue;
+      try {
+        const StartOutcome o = StartOutcome::from_json(json::parse(line));
+        const int s = scene_index(o.scene);
+        if (s < 0 || o.start >= plan_.scenes[s].starts || o.seed != options_.seed) continue;
+        if (!done.insert({s, o.start}).second) continue;
+        update(s, o);
+        // Times of an earlier run are not comparable with this one's clock.
+        best_[s].first_feasible_s = best_[s].best_s = best_[s].start >= 0 ? 0.0 : -1.0;
+      } catch (const std::exception&) {
+        ++bad;  // e.g. a line cut short by a kill
+      }
+    }
+    if (bad > 0) spdlog::warn("{}: skipped {} unreadable line(s)", path, bad);
+    resumed_ = static_cast<int>(done.size());
+    if (resumed_ > 0) spdlog::info("resume: {} start(s) already in {}", resumed_, path);
+    return done;
+  }
+
+  void write_best() {
+    json scenes = json::object();
+    for (std::size_t s = 0; s < plan_.scenes.size(); ++s) {
+      const Best& b = best_[s];
+      json j = {{"starts", plan_.scenes[s].starts},
+                {"starts_run", b.run},
+                {"starts_solved", b.solved},
+                {"time_to_first_feasible_s", b.first_feasible_s >= 0 ? json(b.first_feasible_s) : json(nullptr)},
+                {"time_to_best_s", b.best_s >= 0 ? json(b.best_s) : json(nullptr)}};
+      if (b.start >= 0) {
+        j["T_f"] = b.T_f;
+        j["start"] = b.start;
+        j["description"] = b.outcome.description;
+        j["certificate"] = {{"max_violation", b.outcome.max_violation},
+                            {"max_complementarity", b.outcome.max_complementarity}};
+        j["solution"] = "best/" + plan_.scenes[s].scene.name + ".json";
+      } else {
+        j["T_f"] = nullptr;
+      }
+      scenes[plan_.scenes[s].scene.name] = j;
+    }
+    const json doc = {{"seed", options_.seed},
+                      {"elapsed_s", seconds()},
+                      {"starts_total", total_},
+                      {"starts_finished", finished_},
+                      {"time_limit_s", options_.time_limit},
+                      {"time_limit_reached", time_limited_},
+                      {"scenes", scenes}};
+    write_json_file(options_.out + "/best.json", doc);
+  }
+
+  const SearchPlan& plan_;
+  const SearchOptions& options_;
+  Clock::time_point t0_;
+  std::mutex mutex_;
+  std::vector<Task> pending_;
+  std::size_t next_ = 0;
+  int total_ = 0, finished_ = 0, resumed_ = 0;
+  bool time_limited_ = false;
+  std::vector<Best> best_;
+  std::FILE* runs_ = nullptr;
+};
+
+// Everything every rank needs to run a task.
+struct Context {
+  Settings settings;
+  SearchPlan plan;
+  ReductionSettings schedule;
+  ElasticSettings elastic;
+  std::uint64_t seed = 1;
+  int rank = 0;
+};
+
+StartOutcome run_task(const Context& c, const Task& t, json* solution) {
+  const Scene& scene = c.plan.scenes[t.scene].scene;
+  const StartSpec spec = make_start(scene, c.seed, t.start, c.schedule, c.elastic);
+  StartOutcome o = run_start(scene, c.settings, spec, t.budget, solution);
+  o.rank = c.rank;
+  return o;
+}
+
+Task task_from_json(const json& j) {
+  return {j.at("scene").get<int>(), j.at("start").get<int>(), j.at("budget").get<double>()};
+}
+
+void worker_loop(const Context& c) {
+  send_string("{}", 0, kTagWork);  // the first request
+  while (true) {
+    MPI_Status st;
+    MPI_Probe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &st);
+    const std::string msg = recv_string(0, st.MPI_TAG, &st);
+    if (st.MPI_TAG == kTagStop) return;
+    json solution;
+    const StartOutcome o = run_task(c, task_from_json(json::parse(msg)), &solution);
+    json reply = {{"outcome", o.to_json()}};
+    if (o.solved()) reply["solution"] = solution;
+    send_string(reply.dump(), 0, kTagWork);
+  }
+}
+
+void coordinator_loop(Search& search, int workers) {
+  int active = workers;
+  while (active > 0) {
+    MPI_Status st;
+    const json msg = json::parse(recv_string(MPI_ANY_SOURCE, kTagWork, &st));
+    if (msg.contains("outcome")) {
+      const StartOutcome o = StartOutcome::from_json(msg["outcome"]);
+      search.record(o, msg.contains("solution") ? &msg["solution"] : nullptr);
+    }
+    if (const auto t = search.next()) {
+      send_string(json{{"scene", t->scene}, {"start", t->start}, {"budget", t->budget}}.dump(),
+                  st.MPI_SOURCE, kTagTask);
+    } else {
+      send_string("", st.MPI_SOURCE, kTagStop);
+      --active;
+    }
+  }
+}
+
+}  // namespace
+
+int run_search(const SearchOptions& o) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  Context c;
+  c.rank = rank;
+  c.seed = o.seed;
+  std::vector<std::string> scene_sets, settings_sets;
+  split_overrides(o.sets, scene_sets, settings_sets);
+  c.settings = Settings::load(o.settings);
+  for (const auto& s : settings_sets) c.settings.apply_override(s);
+  c.schedule = reduction_settings(c.settings);
+  c.elastic = elastic_settings(c.settings);
+  IpoptSolver check(ipopt_options(c.settings));  // bad Ipopt options fail here, on every rank
+  c.plan = load_search_plan(o.configs, o.starts, 1, 0.0, scene_sets);
+
+  if (rank != 0) {
+    worker_loop(c);
+    return 0;
+  }
+  spdlog::info("search: {} scene(s), {} start(s), seed {}, {} rank(s){}", c.plan.scenes.size(),
+               c.plan.total_starts(), o.seed, size,
+               o.time_limit > 0 ? fmt::format(", time limit {:.0f} s", o.time_limit) : "");
+  Search search(c.plan, o);
+  std::thread coordinator;
+  if (size > 1) coordinator = std::thread([&] { coordinator_loop(search, size - 1); });
+  while (const auto t = search.next()) {  // rank 0 works too
+    json solution;
+    const StartOutcome out = run_task(c, *t, &solution);
+    search.record(out, out.solved() ? &solution : nullptr);
+  }
+  if (coordinator.joinable()) coordinator.join();
+  search.finish();
+  spdlog::info("wrote {}/runs.jsonl, {}/best.json", o.out, o.out);
+  return search.all_solved() ? 0 : 3;
+}
+
+}  // namespace disco

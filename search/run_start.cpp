@@ -1,0 +1,121 @@
+#include "search/run_start.h"
+
+#include <chrono>
+#include <cmath>
+#include <exception>
+
+#include "core/config/solver_settings.h"
+#include "core/model/solution.h"
+
+namespace disco {
+namespace {
+
+using json = nlohmann::json;
+
+json number_or_null(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+double number_or_nan(const json& j) {
+  return j.is_number() ? j.get<double>() : std::numeric_limits<double>::quiet_NaN();
+}
+
+}  // namespace
+
+json StartOutcome::to_json() const {
+  return {{"scene", scene},
+          {"start", start},
+          {"seed", seed},
+          {"status", status},
+          {"detail", detail},
+          {"T_f", number_or_null(T_f)},
+          {"certificate",
+           {{"max_violation", number_or_null(max_violation)},
+            {"max_complementarity", number_or_null(max_complementarity)}}},
+          {"nlp_solves", nlp_solves},
+          {"iterations", iterations},
+          {"seconds", seconds},
+          {"time_to_first_feasible", time_to_first_feasible},
+          {"time_to_best", time_to_best},
+          {"description", description},
+          {"rank", rank}};
+}
+
+StartOutcome StartOutcome::from_json(const json& j) {
+  StartOutcome o;
+  o.scene = j.at("scene").get<std::string>();
+  o.start = j.at("start").get<int>();
+  o.seed = j.at("seed").get<std::uint64_t>();
+  o.status = j.at("status").get<std::string>();
+  o.detail = j.value("detail", "");
+  o.T_f = number_or_nan(j.at("T_f"));
+  o.max_violation = number_or_nan(j.at("certificate").at("max_violation"));
+  o.max_complementarity = number_or_nan(j.at("certificate").at("max_complementarity"));
+  o.nlp_solves = j.value("nlp_solves", 0);
+  o.iterations = j.value("iterations", 0);
+  o.seconds = j.value("seconds", 0.0);
+  o.time_to_first_feasible = j.value("time_to_first_feasible", -1.0);
+  o.time_to_best = j.value("time_to_best", -1.0);
+  o.description = j.value("description", "");
+  o.rank = j.value("rank", 0);
+  return o;
+}
+
+StartOutcome run_start(const Scene& scene, const Settings& settings, const StartSpec& start,
+                       double time_budget_s, json* solution) {
+  const auto t0 = std::chrono::steady_clock::now();
+  StartOutcome out;
+  out.scene = scene.name;
+  out.start = start.index;
+  out.seed = start.seed;
+  out.description = start.describe();
+  try {
+    IpoptSolver ipopt(ipopt_options(settings));
+    ElasticSettings elastic = start.elastic;
+    ReductionSettings schedule = start.schedule;
+    if (time_budget_s > 0) {
+      elastic.wall_limit_s = time_budget_s;
+      schedule.time_limit = time_budget_s;
+    }
+    ElasticSolver solver(ipopt, elastic);
+    RobotProblem problem(scene);
+    const ReductionResult r = reduce_objective(
+        problem, solver, schedule, [&](double T) { return make_guess(problem, start, T); });
+    out.status = to_string(r.status);
+    out.nlp_solves = r.nlp_solves;
+    out.iterations = r.iterations;
+    out.time_to_first_feasible = r.time_to_first_feasible;
+    out.time_to_best = r.time_to_best;
+    SolutionInfo info;
+    info.status = out.status;
+    info.nlp_solves = r.nlp_solves;
+    info.iterations = r.iterations;
+    Vector z;
+    if (r.found) {
+      z = r.best.z;
+      info.certificate = certify(problem.program(), z);
+      out.T_f = r.T_best;
+    } else {
+      out.detail = r.feasibility_detail;
+    }
+    if (time_budget_s > 0 && r.seconds >= time_budget_s) {
+      out.detail += std::string(out.detail.empty() ? "" : "; ") + "time budget reached";
+    }
+    if (!r.found) {
+      info.detail = out.detail;
+      if (!r.solves.empty()) info.certificate = r.solves.back().certificate;
+    }
+    out.max_violation = info.certificate.max_violation;
+    out.max_complementarity = info.certificate.max_complementarity;
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    info.wall_s = out.seconds;
+    if (solution != nullptr) *solution = solution_json(problem, z, info);
+  } catch (const std::exception& e) {
+    out.status = "error";
+    out.detail = e.what();
+  } catch (...) {
+    out.status = "error";
+    out.detail = "unknown exception";
+  }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace disco

@@ -1,0 +1,45 @@
+// disco — what a search runs: scenes, each with its number of starts and time
+// budget, read from the CONFIG files given to `disco search`.
+//
+// A CONFIG is a scene file (core/model/scene_yaml.h) or a benchmark file:
+//
+//   benchmark: smoke              # the key that marks a benchmark file
+//   starts: 4                     # optional default starts per scene (>= 1)
+//   time_limit: 60                # optional default seconds per start (> 0; 0 = none)
+//   scenes:
+//     - file: ../scenarios/one_robot_axis.yaml   # relative to this file
+//       starts: 3                 # optional
+//       time_limit: 20            # optional
+//       set: [steps=20]           # optional scene overrides (as --set scene.KEY=VALUE)
+//
+// --starts N on the command line replaces every scene's number of starts.
+// Scene names must be unique across the plan: runs are keyed by scene name.
+// Errors are InputErrors naming file, line and key.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/model/scene.h"
+
+namespace disco {
+
+struct SceneJob {
+  Scene scene;
+  int starts = 1;
+  double time_limit = 0.0;  // s per start; 0 = none
+};
+
+struct SearchPlan {
+  std::vector<SceneJob> scenes;
+  int total_starts() const;
+};
+
+// `starts_override` > 0 replaces every scene's starts; `default_starts` and
+// `default_time_limit` apply where a file gives none; `scene_overrides` apply
+// to every scene (after a benchmark entry's own `set`).
+SearchPlan load_search_plan(const std::vector<std::string>& configs, int starts_override,
+                            int default_starts, double default_time_limit,
+                            const std::vector<std::string>& scene_overrides);
+
+}  // namespace disco

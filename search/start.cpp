@@ -1,0 +1,313 @@
+#include "search/start.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "core/util/check.h"
+
+// How the starts are made.
+//
+// Parameters. Start `index` >= 1 draws, in this fixed order, from a
+// std::mt19937_64 (fully specified by the standard) seeded with FNV-1a over
+// (seed, scene name, index, stream 0): horizon_factor, rate, grow, shrink,
+// perturbation, zeta. Uniform reals are made here from the generator's bits
+// (std::uniform_real_distribution is implementation-defined), so a start is
+// the same with any standard library. Every draw is made whatever the kind,
+// so the kind never shifts the other parameters.
+//
+// Kinds. (index - 1) % 4 = 0: perturbed, 1: detour left, 2: detour right,
+// 3: perturbed. A detour needs a conflicting pair (below); without one the
+// start is perturbed.
+//
+// Paths. Every guess is a set of position paths, completed into a full model
+// point by RobotProblem::guess_from_paths. The straight path of a robot goes
+// from its start to the nearest point of its target box along the smoothstep
+// w(tau) = tau^2 (3 - 2 tau), tau = t / N. Every offset added here vanishes at
+// t = 0 and t = N, and the point at t = N is set to the target point exactly.
+// A robot with force_dims 1 cannot push sideways: its offsets are projected on
+// its force axis (only its timing along the axis changes).
+//
+// Conflicts. A pair (i, j) conflicts when, on the straight paths (which share
+// the same timing, so p_j - p_i = d0 + w (dN - d0) is linear in w), the centre
+// distance drops below R_i + R_j (+ d_s for an avoid pair).
+//
+// Detour. For every conflicting pair, with D = dN - d0 (the relative motion of
+// j seen from i) and n = D turned +90 degrees (unit): i is moved by
+// +side B n b(tau), j by -side B n b(tau), with B = R_i + R_j (+ d_s) and b a
+// smooth bump, 0 at tau = 0 and 1, peaking (b = 1) at the straight paths'
+// closest approach. So the lateral offset (p_j - p_i) . n changes by
+// -2 side B at the peak: side +1 (left) puts each robot on the other's left
+// (relative to their relative motion), side -1 (right) on its right. The
+// offsets of the two sides are exact mirror images; pairs' offsets add up.
+//
+// Perturbed. Per robot: a lateral offset p L l(tau) along its path's normal
+// (L = path length; a robot that does not move gets p R in x and in y
+// independently, R its radius), with l = sum_k a_k sin(k pi tau) / sum |a_k|,
+// k = 1..3, a_k uniform in [-1, 1]; and a timing warp s(tau) = tau +
+// p sum_k c_k sin(k pi tau) / (k pi), k = 1..2, c_k in [-1, 1], along the path
+// (w(s(tau)) replaces w(tau)), monotone since s' >= 1 - 2 p > 0 for p < 0.5.
+// The shape's random numbers come from stream 1 of the start's generator.
+
+namespace disco {
+namespace {
+
+using Paths = std::vector<std::vector<std::array<double, 3>>>;
+
+constexpr double kPi = std::numbers::pi;
+
+// FNV-1a, 64 bits, over an explicit little-endian byte sequence.
+class Fnv1a {
+ public:
+  void byte(std::uint8_t b) {
+    h_ ^= b;
+    h_ *= 1099511628211ull;
+  }
+  void u64(std::uint64_t v) {
+    for (int k = 0; k < 8; ++k) byte(static_cast<std::uint8_t>(v >> (8 * k)));
+  }
+  void text(const std::string& s) {
+    u64(s.size());
+    for (char c : s) byte(static_cast<std::uint8_t>(c));
+  }
+  std::uint64_t value() const { return h_; }
+
+ private:
+  std::uint64_t h_ = 14695981039346656037ull;
+};
+
+// Stream 0: the start's parameters; stream 1: the shape of its guess.
+std::mt19937_64 generator(std::uint64_t seed, const std::string& scene, int index,
+                          std::uint64_t stream) {
+  Fnv1a f;
+  f.text("disco start");
+  f.u64(seed);
+  f.text(scene);
+  f.u64(static_cast<std::uint64_t>(static_cast<std::int64_t>(index)));
+  f.u64(stream);
+  return std::mt19937_64(f.value());
+}
+
+// Uniform in [0, 1), from the top 53 bits.
+double uniform01(std::mt19937_64& g) { return static_cast<double>(g() >> 11) * 0x1.0p-53; }
+double uniform(std::mt19937_64& g, double lo, double hi) { return lo + (hi - lo) * uniform01(g); }
+
+double smoothstep(double tau) { return tau * tau * (3.0 - 2.0 * tau); }
+// tau with smoothstep(tau) = w, for w in [0, 1].
+double inverse_smoothstep(double w) { return 0.5 - std::sin(std::asin(1.0 - 2.0 * w) / 3.0); }
+
+// A robot's straight move: start and nearest target point (SI).
+struct Move {
+  std::array<double, 3> from, to;  // x, y, phi
+  double length() const { return std::hypot(to[0] - from[0], to[1] - from[1]); }
+};
+
+Move straight_move(const Robot& rb) {
+  Move m;
+  for (int c : {kX, kY, kPhi}) {
+    m.from[c] = rb.start[c];
+    m.to[c] = std::clamp(rb.start[c], rb.target.lower[c], rb.target.upper[c]);
+  }
+  return m;
+}
+
+struct Conflict {
+  int i = 0, j = 0;
+  double w = 0.5;              // smoothstep fraction at the closest approach
+  double nx = 0.0, ny = 0.0;   // unit normal of the relative motion
+  double clearance = 0.0;      // R_i + R_j (+ d_s)
+};
+
+std::vector<Conflict> conflicts(const Scene& scene) {
+  std::vector<Conflict> out;
+  for (const Pair& p : scene.pairs) {
+    const Move a = straight_move(scene.robots[p.i]), b = straight_move(scene.robots[p.j]);
+    const double d0x = b.from[0] - a.from[0], d0y = b.from[1] - a.from[1];
+    const double Dx = (b.to[0] - a.to[0]) - d0x, Dy = (b.to[1] - a.to[1]) - d0y;
+    const double DD = Dx * Dx + Dy * Dy;
+    if (!(DD > 0.0)) continue;  // no relative motion: the start distance stays, and it is valid
+    const double w = std::clamp(-(d0x * Dx + d0y * Dy) / DD, 0.0, 1.0);
+    const double closest = std::hypot(d0x + w * Dx, d0y + w * Dy);
+    const double clearance = scene.robots[p.i].radius + scene.robots[p.j].radius +
+                             (p.mode == PairMode::kAvoid ? p.safe_distance : 0.0);
+    // Touching at the start is allowed: a relative margin keeps roundoff out.
+    if (!(closest < clearance * (1.0 - 1e-12))) continue;
+    const double len = std::sqrt(DD);
+    out.push_back({p.i, p.j, w, -Dy / len, Dx / len, clearance});
+  }
+  return out;
+}
+
+// 0 at tau = 0 and 1, 1 at peak, C^1 (sin^2 on each side).
+double bump(double tau, double peak) {
+  const double u = tau <= peak ? tau / peak : (1.0 - tau) / (1.0 - peak);
+  const double s = std::sin(0.5 * kPi * u);
+  return s * s;
+}
+
+// Offsets of force_dims 1 robots onto their force axis.
+void project(const Robot& rb, double& ox, double& oy) {
+  if (rb.force_dims != 1) return;
+  const double along = ox * rb.force_axis[0] + oy * rb.force_axis[1];
+  ox = along * rb.force_axis[0];
+  oy = along * rb.force_axis[1];
+}
+
+// The paths with timing warp `warp` (tau -> s) and offsets added by `offset`
+// (robot, tau, &ox, &oy); the t = N point is the target point.
+template <class Warp, class Offset>
+Paths build_paths(const Scene& scene, Warp&& warp, Offset&& offset) {
+  const int N = scene.steps, nr = static_cast<int>(scene.robots.size());
+  Paths paths(nr, std::vector<std::array<double, 3>>(N + 1));
+  for (int i = 0; i < nr; ++i) {
+    const Robot& rb = scene.robots[i];
+    const Move m = straight_move(rb);
+    paths[i][0] = m.from;
+    for (int t = 1; t < N; ++t) {
+      const double tau = static_cast<double>(t) / N;
+      const double w = smoothstep(std::clamp(warp(i, tau), 0.0, 1.0));
+      double ox = 0.0, oy = 0.0;
+      offset(i, tau, ox, oy);
+      project(rb, ox, oy);
+      for (int c : {kX, kY, kPhi}) paths[i][t][c] = m.from[c] + w * (m.to[c] - m.from[c]);
+      paths[i][t][kX] += ox;
+      paths[i][t][kY] += oy;
+    }
+    paths[i][N] = m.to;
+  }
+  return paths;
+}
+
+Paths detour_paths(const Scene& scene, int side) {
+  const std::vector<Conflict> cs = conflicts(scene);
+  auto straight = [](int, double tau) { return tau; };
+  auto offset = [&](int robot, double tau, double& ox, double& oy) {
+    for (const Conflict& c : cs) {
+      if (robot != c.i && robot != c.j) continue;
+      // Peak at the closest approach, kept away from the ends.
+      const double peak = std::clamp(inverse_smoothstep(c.w), 0.15, 0.85);
+      const double a = side * c.clearance * bump(tau, peak) * (robot == c.i ? 1.0 : -1.0);
+      ox += a * c.nx;
+      oy += a * c.ny;
+    }
+  };
+  return build_paths(scene, straight, offset);
+}
+
+Paths perturbed_paths(const Scene& scene, const StartSpec& start) {
+  const int nr = static_cast<int>(scene.robots.size());
+  const double p = start.perturbation;
+  std::mt19937_64 g = generator(start.seed, scene.name, start.index, 1);
+  struct Shape {
+    std::array<double, 3> lateral, second;  // second: y of a robot that does not move
+    std::array<double, 2> timing;
+  };
+  std::vector<Shape> shapes(nr);
+  for (Shape& s : shapes) {  // the same draws for every robot, moving or not
+    for (double& a : s.lateral) a = uniform(g, -1.0, 1.0);
+    for (double& a : s.second) a = uniform(g, -1.0, 1.0);
+    for (double& c : s.timing) c = uniform(g, -1.0, 1.0);
+  }
+  auto profile = [](const std::array<double, 3>& a, double tau) {
+    double sum = 0.0, norm = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      sum += a[k] * std::sin((k + 1) * kPi * tau);
+      norm += std::abs(a[k]);
+    }
+    return norm > 0.0 ? sum / norm : 0.0;
+  };
+  auto warp = [&](int robot, double tau) {
+    double s = tau;
+    for (int k = 0; k < 2; ++k)
+      s += p * shapes[robot].timing[k] * std::sin((k + 1) * kPi * tau) / ((k + 1) * kPi);
+    return s;
+  };
+  auto offset = [&](int robot, double tau, double& ox, double& oy) {
+    const Robot& rb = scene.robots[robot];
+    const Move m = straight_move(rb);
+    const double L = m.length();
+    if (L > 1e-9 * rb.radius) {
+      const double a = p * L * profile(shapes[robot].lateral, tau);
+      ox += a * -(m.to[1] - m.from[1]) / L;
+      oy += a * (m.to[0] - m.from[0]) / L;
+    } else {
+      ox += p * rb.radius * profile(shapes[robot].lateral, tau);
+      oy += p * rb.radius * profile(shapes[robot].second, tau);
+    }
+  };
+  return build_paths(scene, warp, offset);
+}
+
+}  // namespace
+
+std::string to_string(GuessKind kind) {
+  switch (kind) {
+    case GuessKind::kStraight: return "straight";
+    case GuessKind::kPerturbed: return "perturbed";
+    case GuessKind::kDetour: return "detour";
+  }
+  return "unknown";
+}
+
+std::string StartSpec::describe() const {
+  std::string kind = to_string(guess);
+  char buf[64];
+  if (guess == GuessKind::kDetour) {
+    kind += detour_side > 0 ? " left" : " right";
+  } else if (guess == GuessKind::kPerturbed) {
+    std::snprintf(buf, sizeof buf, " %.2f", perturbation);
+    kind += buf;
+  }
+  char line[256];
+  std::snprintf(line, sizeof line, "start %d: %s, horizon x%.2f, rate %.3f, grow %.2f, shrink %.2f, zeta %g",
+                index, kind.c_str(), schedule.horizon_factor, schedule.rate, schedule.grow,
+                schedule.shrink, elastic.zeta);
+  return line;
+}
+
+StartSpec make_start(const Scene& scene, std::uint64_t seed, int index,
+                     const ReductionSettings& base_schedule, const ElasticSettings& base_elastic) {
+  DISCO_CHECK(index >= 0, "start indices are >= 0");
+  StartSpec s;
+  s.index = index;
+  s.seed = seed;
+  s.schedule = base_schedule;
+  s.elastic = base_elastic;
+  if (index == 0) return s;  // the plain start: straight guess, settings as given
+
+  std::mt19937_64 g = generator(seed, scene.name, index, 0);
+  s.schedule.horizon_factor = uniform(g, 1.2, 3.0);
+  s.schedule.rate = uniform(g, 0.02, 0.2);
+  s.schedule.grow = uniform(g, 1.2, 2.0);
+  s.schedule.shrink = uniform(g, 0.3, 0.7);
+  const double perturbation = uniform(g, 0.05, 0.3);
+  static constexpr double kZeta[3] = {1.0, 10.0, 100.0};  // uniform in log10(zeta)
+  s.elastic.zeta = kZeta[std::min(2, static_cast<int>(3.0 * uniform01(g)))];
+
+  const int slot = (index - 1) % 4;
+  if ((slot == 1 || slot == 2) && !conflicts(scene).empty()) {
+    s.guess = GuessKind::kDetour;
+    s.detour_side = slot == 1 ? +1 : -1;
+  } else {
+    s.guess = GuessKind::kPerturbed;
+    s.perturbation = perturbation;
+  }
+  return s;
+}
+
+Vector make_guess(const RobotProblem& problem, const StartSpec& start, double seconds) {
+  switch (start.guess) {
+    case GuessKind::kStraight: return problem.straight_line_guess(seconds);
+    case GuessKind::kPerturbed:
+      return problem.guess_from_paths(perturbed_paths(problem.scene(), start), seconds);
+    case GuessKind::kDetour:
+      return problem.guess_from_paths(detour_paths(problem.scene(), start.detour_side), seconds);
+  }
+  return problem.straight_line_guess(seconds);
+}
+
+}  // namespace disco

@@ -1,0 +1,405 @@
+// The starts of the multi-start search (search/start.h): deterministic
+// parameters within their ranges, start 0 = what `disco solve` runs, detours
+// only where straight paths conflict and on the requested side, perturbed
+// guesses that keep the start and the target, and a detour start that the
+// objective reduction turns into a certified solution.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "core/config/settings.h"
+#include "core/config/solver_settings.h"
+#include "core/model/robot_problem.h"
+#include "core/model/scene_yaml.h"
+#include "search/objective_reduction.h"
+#include "search/start.h"
+
+namespace disco {
+namespace {
+
+Scene scenario(const std::string& name, const std::vector<std::string>& overrides = {}) {
+  return load_scene(std::string(DISCO_SOURCE_DIR) + "/configs/scenarios/" + name + ".yaml",
+                    overrides);
+}
+
+// Robots whose straight paths never come close: two parallel moves 3 m apart
+// (one with force_dims 1 along x), and one that does not move (no target).
+constexpr const char* kApartScene = R"(
+scenario: apart
+steps: 20
+defaults: {radius: 0.5, mass: 1.0, mu: 0.2, force_max: 5.0, K: 8}
+robots:
+  - name: a
+    start: {x: 0, y: 0}
+    target: {x: 4, y: 0, vx: 0, vy: 0}
+  - name: b
+    start: {x: 0, y: 3}
+    target: {x: 4, y: 3, vx: 0, vy: 0}
+    force_dims: 1
+    force_axis: [1, 0]
+  - name: c
+    start: {x: -2, y: 8, phi: 0.5}
+pairs: {mode: avoid, safe_distance: 0.01}
+)";
+
+Scene apart_scene() { return parse_scene(kApartScene, "apart"); }
+
+ReductionSettings base_schedule() {
+  ReductionSettings r;  // not the defaults, so that "kept from the base" is visible
+  r.horizon_factor = 1.7;
+  r.horizon_min = 0.25;
+  r.rate = 0.04;
+  r.grow = 1.3;
+  r.shrink = 0.6;
+  r.min_rate = 0.003;
+  r.max_solves = 7;
+  r.step_iterations = 123;
+  r.time_limit = 42.0;
+  return r;
+}
+
+ElasticSettings base_elastic() {
+  ElasticSettings e;
+  e.formulation = ElasticFormulation::kPerPair;
+  e.zeta = 3.0;
+  e.zeta_factor = 7.0;
+  e.zeta_max = 1e5;
+  e.stall_change = 2e-3;
+  e.complementarity_tol = 1e-7;
+  e.violation_tol = 2e-7;
+  e.polish = false;
+  e.wall_limit_s = 9.0;
+  e.iteration_limit = 11;
+  return e;
+}
+
+bool same_schedule(const ReductionSettings& a, const ReductionSettings& b) {
+  return a.horizon_factor == b.horizon_factor && a.horizon_min == b.horizon_min &&
+         a.rate == b.rate && a.grow == b.grow && a.shrink == b.shrink &&
+         a.min_rate == b.min_rate && a.max_solves == b.max_solves &&
+         a.step_iterations == b.step_iterations && a.time_limit == b.time_limit;
+}
+
+bool same_elastic(const ElasticSettings& a, const ElasticSettings& b) {
+  return a.formulation == b.formulation && a.zeta == b.zeta && a.zeta_factor == b.zeta_factor &&
+         a.zeta_max == b.zeta_max && a.stall_change == b.stall_change &&
+         a.complementarity_tol == b.complementarity_tol && a.violation_tol == b.violation_tol &&
+         a.polish == b.polish && a.wall_limit_s == b.wall_limit_s &&
+         a.iteration_limit == b.iteration_limit;
+}
+
+bool same_spec(const StartSpec& a, const StartSpec& b) {
+  return a.index == b.index && a.seed == b.seed && a.guess == b.guess &&
+         a.detour_side == b.detour_side && a.perturbation == b.perturbation &&
+         same_schedule(a.schedule, b.schedule) && same_elastic(a.elastic, b.elastic);
+}
+
+bool bitwise_equal(const Vector& a, const Vector& b) {
+  return a.size() == b.size() &&
+         std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<size_t>(a.size())) == 0;
+}
+
+// Position (SI) of robot i at state t of a guess; t = 0 is the scene's start.
+std::array<double, 2> position(const RobotProblem& rp, const Vector& z, int i, int t) {
+  if (t == 0) return {rp.scene().robots[i].start[kX], rp.scene().robots[i].start[kY]};
+  const double L = rp.units().length;
+  return {z[rp.layout().state_index(i, t, kX)] * L, z[rp.layout().state_index(i, t, kY)] * L};
+}
+
+double min_centre_distance(const RobotProblem& rp, const Vector& z, int i, int j) {
+  double d = kInf;
+  for (int t = 0; t <= rp.scene().steps; ++t) {
+    const auto a = position(rp, z, i, t), b = position(rp, z, j, t);
+    d = std::min(d, std::hypot(b[0] - a[0], b[1] - a[1]));
+  }
+  return d;
+}
+
+// The first start index >= 1 of the given kind and side.
+StartSpec find_start(const Scene& scene, GuessKind kind, int side = 0, std::uint64_t seed = 7) {
+  for (int k = 1; k < 50; ++k) {
+    StartSpec s = make_start(scene, seed, k, base_schedule(), base_elastic());
+    if (s.guess == kind && s.detour_side == side) return s;
+  }
+  ADD_FAILURE() << "no start of kind " << to_string(kind) << " side " << side;
+  return {};
+}
+
+bool all_finite(const Vector& z) { return z.allFinite(); }
+
+TEST(Start, SameInputsGiveTheSameStartAndTheSameGuessBitwise) {
+  for (const Scene& scene : {scenario("two_robots_swap_avoid"), scenario("three_robots_contact"),
+                             apart_scene()}) {
+    const RobotProblem rp(scene);
+    for (int index = 0; index < 9; ++index) {
+      const StartSpec a = make_start(scene, 12345, index, base_schedule(), base_elastic());
+      const StartSpec b = make_start(scene, 12345, index, base_schedule(), base_elastic());
+      EXPECT_TRUE(same_spec(a, b)) << scene.name << " " << a.describe();
+      EXPECT_EQ(a.describe(), b.describe());
+      const Vector za = make_guess(rp, a, 3.3), zb = make_guess(rp, b, 3.3);
+      EXPECT_TRUE(bitwise_equal(za, zb)) << scene.name << " " << a.describe();
+      EXPECT_TRUE(all_finite(za)) << scene.name << " " << a.describe();
+    }
+  }
+}
+
+TEST(Start, DifferentSeedIndexOrSceneGiveDifferentParameters) {
+  const Scene scene = scenario("two_robots_swap_avoid");
+  Scene renamed = scene;
+  renamed.name = "other_name";
+  const StartSpec a = make_start(scene, 1, 5, base_schedule(), base_elastic());
+  const StartSpec seed = make_start(scene, 2, 5, base_schedule(), base_elastic());
+  const StartSpec index = make_start(scene, 1, 6, base_schedule(), base_elastic());
+  const StartSpec name = make_start(renamed, 1, 5, base_schedule(), base_elastic());
+  for (const StartSpec* o : {&seed, &index, &name}) {
+    EXPECT_NE(a.schedule.horizon_factor, o->schedule.horizon_factor) << o->describe();
+    EXPECT_NE(a.schedule.rate, o->schedule.rate) << o->describe();
+    EXPECT_NE(a.schedule.grow, o->schedule.grow) << o->describe();
+    EXPECT_NE(a.schedule.shrink, o->schedule.shrink) << o->describe();
+  }
+  // Perturbed guesses of different seeds differ too (start 5 is perturbed).
+  ASSERT_EQ(a.guess, GuessKind::kPerturbed);
+  ASSERT_EQ(seed.guess, GuessKind::kPerturbed);
+  const RobotProblem rp(scene);
+  StartSpec same_amplitude = seed;
+  same_amplitude.perturbation = a.perturbation;
+  EXPECT_FALSE(bitwise_equal(make_guess(rp, a, 3.0), make_guess(rp, same_amplitude, 3.0)));
+}
+
+TEST(Start, IndexZeroIsTheBaseSettingsAndTheStraightGuess) {
+  for (const Scene& scene : {scenario("two_robots_swap_avoid"), apart_scene()}) {
+    const StartSpec s = make_start(scene, 99, 0, base_schedule(), base_elastic());
+    EXPECT_EQ(s.index, 0);
+    EXPECT_EQ(s.seed, 99u);
+    EXPECT_EQ(s.guess, GuessKind::kStraight);
+    EXPECT_EQ(s.detour_side, 0);
+    EXPECT_EQ(s.perturbation, 0.0);
+    EXPECT_TRUE(same_schedule(s.schedule, base_schedule()));
+    EXPECT_TRUE(same_elastic(s.elastic, base_elastic()));
+    const RobotProblem rp(scene);
+    for (double T : {1.0, 4.56})
+      EXPECT_TRUE(bitwise_equal(make_guess(rp, s, T), rp.straight_line_guess(T))) << T;
+    EXPECT_EQ(s.describe(),
+              "start 0: straight, horizon x1.70, rate 0.040, grow 1.30, shrink 0.60, zeta 3");
+  }
+}
+
+TEST(Start, ParametersStayInTheirRangesAndOtherFieldsAreKept) {
+  const Scene scene = scenario("two_robots_swap_avoid");
+  std::set<double> zetas;
+  int perturbed = 0, left = 0, right = 0;
+  for (int index = 1; index <= 200; ++index) {
+    const StartSpec s = make_start(scene, 2026, index, base_schedule(), base_elastic());
+    SCOPED_TRACE(s.describe());
+    EXPECT_EQ(s.index, index);
+    EXPECT_EQ(s.seed, 2026u);
+    EXPECT_GE(s.schedule.horizon_factor, 1.2);
+    EXPECT_LE(s.schedule.horizon_factor, 3.0);
+    EXPECT_GE(s.schedule.rate, 0.02);
+    EXPECT_LE(s.schedule.rate, 0.2);
+    EXPECT_GE(s.schedule.grow, 1.2);
+    EXPECT_LE(s.schedule.grow, 2.0);
+    EXPECT_GE(s.schedule.shrink, 0.3);
+    EXPECT_LE(s.schedule.shrink, 0.7);
+    EXPECT_TRUE(s.elastic.zeta == 1.0 || s.elastic.zeta == 10.0 || s.elastic.zeta == 100.0);
+    zetas.insert(s.elastic.zeta);
+    // Everything else is the base.
+    ReductionSettings r = s.schedule;
+    r.horizon_factor = base_schedule().horizon_factor;
+    r.rate = base_schedule().rate;
+    r.grow = base_schedule().grow;
+    r.shrink = base_schedule().shrink;
+    EXPECT_TRUE(same_schedule(r, base_schedule()));
+    ElasticSettings e = s.elastic;
+    e.zeta = base_elastic().zeta;
+    EXPECT_TRUE(same_elastic(e, base_elastic()));
+    // The kinds cycle: perturbed, detour left, detour right, perturbed.
+    const int slot = (index - 1) % 4;
+    if (slot == 0 || slot == 3) {
+      EXPECT_EQ(s.guess, GuessKind::kPerturbed);
+      EXPECT_GE(s.perturbation, 0.05);
+      EXPECT_LE(s.perturbation, 0.3);
+      EXPECT_EQ(s.detour_side, 0);
+      ++perturbed;
+    } else {
+      EXPECT_EQ(s.guess, GuessKind::kDetour);
+      EXPECT_EQ(s.detour_side, slot == 1 ? +1 : -1);
+      EXPECT_EQ(s.perturbation, 0.0);
+      EXPECT_NE(s.describe().find(slot == 1 ? "detour left" : "detour right"), std::string::npos);
+      (slot == 1 ? left : right)++;
+    }
+  }
+  EXPECT_EQ(zetas.size(), 3u);
+  EXPECT_EQ(perturbed, 100);
+  EXPECT_EQ(left, 50);
+  EXPECT_EQ(right, 50);
+}
+
+TEST(Start, DetourOnlyWhenStraightPathsConflict) {
+  auto detours = [](const Scene& scene) {
+    int n = 0;
+    for (int index = 1; index <= 40; ++index)
+      n += make_start(scene, 5, index, base_schedule(), base_elastic()).guess == GuessKind::kDetour;
+    return n;
+  };
+  EXPECT_EQ(detours(scenario("two_robots_swap_avoid")), 20);
+  EXPECT_EQ(detours(scenario("three_robots_contact")), 20);
+  EXPECT_EQ(detours(apart_scene()), 0);
+  // Moved 1.02 m apart (> R_i + R_j + d_s = 1.01), the swap no longer conflicts.
+  EXPECT_EQ(detours(scenario("two_robots_swap_avoid", {"robots.0.start.y=0.51",
+                                                       "robots.0.target.y=0.51",
+                                                       "robots.1.start.y=-0.51",
+                                                       "robots.1.target.y=-0.51"})),
+            0);
+  // 1.0 m apart conflicts only through the safe distance of an avoid pair.
+  EXPECT_EQ(detours(scenario("two_robots_swap_avoid", {"robots.0.start.y=0.5",
+                                                       "robots.0.target.y=0.5",
+                                                       "robots.1.start.y=-0.5",
+                                                       "robots.1.target.y=-0.5"})),
+            20);
+}
+
+TEST(Start, DetoursSeparateTheRobotsOnMirrorImageSides) {
+  const Scene scene = scenario("two_robots_swap_avoid");
+  const RobotProblem rp(scene);
+  const double T = 4.0;
+  const Vector straight = rp.straight_line_guess(T);
+  const StartSpec left = find_start(scene, GuessKind::kDetour, +1);
+  const StartSpec right = find_start(scene, GuessKind::kDetour, -1);
+  const Vector zl = make_guess(rp, left, T), zr = make_guess(rp, right, T);
+  ASSERT_TRUE(all_finite(zl));
+  ASSERT_TRUE(all_finite(zr));
+  const double d0 = min_centre_distance(rp, straight, 0, 1);
+  const double dl = min_centre_distance(rp, zl, 0, 1), dr = min_centre_distance(rp, zr, 0, 1);
+  std::printf("swap: min centre distance straight %.3f, left %.3f, right %.3f m\n", d0, dl, dr);
+  EXPECT_LT(d0, 1.01);
+  EXPECT_GT(dl, d0);
+  EXPECT_GT(dr, d0);
+  EXPECT_GE(dl, 1.01);  // the bump (R_i + R_j + d_s each, opposite) clears the pair
+  EXPECT_GE(dr, 1.01);
+  // Mirror images: the offsets from the straight guess are opposite, and large.
+  double largest = 0.0;
+  for (int i = 0; i < 2; ++i)
+    for (int t = 0; t <= scene.steps; ++t) {
+      const auto s = position(rp, straight, i, t), l = position(rp, zl, i, t),
+                 r = position(rp, zr, i, t);
+      for (int c = 0; c < 2; ++c) {
+        EXPECT_NEAR(l[c] - s[c], -(r[c] - s[c]), 1e-12) << "robot " << i << " t " << t;
+        largest = std::max(largest, std::abs(l[c] - s[c]));
+      }
+    }
+  EXPECT_GT(largest, 0.9);
+  // Left: each robot keeps the other on its left. Robot 0 moves +x, so robot 1
+  // passes above it (y_1 > y_0) half way; right: below.
+  const int mid = scene.steps / 2;
+  EXPECT_GT(position(rp, zl, 1, mid)[1], position(rp, zl, 0, mid)[1]);
+  EXPECT_LT(position(rp, zr, 1, mid)[1], position(rp, zr, 0, mid)[1]);
+  // End points: the targets.
+  for (const Vector* z : {&zl, &zr})
+    for (int i = 0; i < 2; ++i) {
+      const auto e = position(rp, *z, i, scene.steps);
+      EXPECT_NEAR(e[0], scene.robots[i].target.lower[kX], 1e-12);
+      EXPECT_NEAR(e[1], scene.robots[i].target.lower[kY], 1e-12);
+    }
+}
+
+TEST(Start, DetoursWidenTheClosestApproachOfEveryConflictingPair) {
+  const Scene scene = scenario("three_robots_contact");
+  const RobotProblem rp(scene);
+  const Vector straight = rp.straight_line_guess(5.0);
+  for (int side : {+1, -1}) {
+    const Vector z = make_guess(rp, find_start(scene, GuessKind::kDetour, side), 5.0);
+    ASSERT_TRUE(all_finite(z));
+    double before = kInf, after = kInf;
+    for (const Pair& p : scene.pairs) {
+      before = std::min(before, min_centre_distance(rp, straight, p.i, p.j));
+      after = std::min(after, min_centre_distance(rp, z, p.i, p.j));
+    }
+    std::printf("three robots, side %+d: closest approach straight %.3f, detour %.3f m\n", side,
+                before, after);
+    EXPECT_GT(after, before);
+  }
+}
+
+TEST(Start, PerturbedGuessesDifferFromStraightButKeepStartAndTarget) {
+  for (const Scene& scene : {scenario("two_robots_swap_avoid"), scenario("three_robots_contact"),
+                             apart_scene()}) {
+    const RobotProblem rp(scene);
+    const Layout& lay = rp.layout();
+    const Scene& ms = lay.scene();  // model units
+    const double T = 3.5, h = T / rp.units().time / scene.steps;
+    const Vector straight = rp.straight_line_guess(T);
+    for (int k = 0; k < 3; ++k) {
+      const StartSpec s = find_start(scene, GuessKind::kPerturbed, 0, 100 + k);
+      SCOPED_TRACE(scene.name + ": " + s.describe());
+      const Vector z = make_guess(rp, s, T);
+      ASSERT_TRUE(all_finite(z));
+      ASSERT_EQ(z.size(), straight.size());
+      EXPECT_EQ(z[lay.horizon_index()], straight[lay.horizon_index()]);
+      for (int i = 0; i < static_cast<int>(ms.robots.size()); ++i) {
+        const Robot& rb = ms.robots[i];
+        // Moved away from the straight path somewhere, by a fair fraction of
+        // the perturbation's scale (path length, or radius if not moving).
+        State goal = rb.start;
+        for (int c : {kX, kY, kPhi})
+          goal[c] = std::clamp(rb.start[c], rb.target.lower[c], rb.target.upper[c]);
+        const double scale =
+            std::max(rb.radius, std::hypot(goal[kX] - rb.start[kX], goal[kY] - rb.start[kY]));
+        double moved = 0.0;
+        for (int t = 1; t < scene.steps; ++t)
+          for (int c : {kX, kY})
+            moved = std::max(moved, std::abs(z[lay.state_index(i, t, c)] -
+                                             straight[lay.state_index(i, t, c)]));
+        EXPECT_GT(moved, 0.01 * s.perturbation * scale) << "robot " << i;
+        // The start is exact: the first velocity is measured from it.
+        for (int c : {kX, kY, kPhi}) {
+          const int v = c == kX ? kVx : c == kY ? kVy : kOmega;
+          EXPECT_EQ(z[lay.state_index(i, 1, v)], (z[lay.state_index(i, 1, c)] - rb.start[c]) / h);
+        }
+        // The end is the nearest target point (the start where the target is free).
+        for (int c : {kX, kY, kPhi})
+          EXPECT_NEAR(z[lay.state_index(i, scene.steps, c)], goal[c],
+                      1e-12 * (1.0 + std::abs(goal[c])))
+              << "robot " << i << " component " << c;
+        // A force_dims 1 robot stays on its axis line (robot b of the apart scene).
+        if (rb.force_dims == 1) {
+          for (int t = 1; t <= scene.steps; ++t)
+            EXPECT_NEAR(z[lay.state_index(i, t, kY)], rb.start[kY], 1e-12);
+        }
+      }
+    }
+  }
+}
+
+TEST(Start, ReductionFromADetourStartReachesACertifiedSolution) {
+  const Scene scene = scenario("two_robots_swap_avoid", {"steps=20"});
+  const Settings settings = Settings::load(default_settings_path());
+  StartSpec start;
+  for (int index = 1; index < 20; ++index) {
+    start = make_start(scene, 3, index, reduction_settings(settings), elastic_settings(settings));
+    if (start.guess == GuessKind::kDetour) break;
+  }
+  ASSERT_EQ(start.guess, GuessKind::kDetour);
+  std::printf("%s\n", start.describe().c_str());
+  RobotProblem problem(scene);
+  IpoptSolver ipopt(ipopt_options(settings));
+  ElasticSolver solver(ipopt, start.elastic);
+  const ReductionResult result = reduce_objective(
+      problem, solver, start.schedule,
+      [&](double seconds) { return make_guess(problem, start, seconds); });
+  std::printf("T_best %.4f s, %zu solves, %d Ipopt iterations, %.2f s\n", result.T_best,
+              result.solves.size(), result.iterations, result.seconds);
+  ASSERT_TRUE(result.found) << to_string(result.status) << " " << result.feasibility_detail;
+  EXPECT_EQ(result.status, MpccStatus::kSolved);
+  EXPECT_TRUE(result.best.certificate.within(1e-6, 1e-6));
+  EXPECT_GT(result.T_best, 0.0);
+}
+
+}  // namespace
+}  // namespace disco
