@@ -1,6 +1,6 @@
 // disco — the multi-start search over MPI ranks (`disco search`).
 //
-// Tasks are (scene, start) pairs, in scene-major order. Rank 0 owns the task
+// Tasks are (scene, start) pairs, larger scenes first. Rank 0 owns the task
 // list and the output directory; tasks are handed out dynamically (starts
 // differ in cost by 10x and more):
 //   * one rank: the process runs every task itself;
