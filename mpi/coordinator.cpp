@@ -92,21 +92,34 @@ class Search {
   }
 
   // The next task, or none when all are handed out or the time limit passed.
+  // A scene whose own time limit has passed (counted from the hand-out of its
+  // first start) gets no more starts. A task's budget is the smallest of the
+  // start's, the scene's and the search's remaining time.
   std::optional<Task> next() {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (next_ >= pending_.size()) return std::nullopt;
     const double elapsed = seconds();
     if (options_.time_limit > 0 && elapsed >= options_.time_limit) {
-      time_limited_ = true;
+      if (next_ < pending_.size()) time_limited_ = true;
       return std::nullopt;
     }
-    Task t = pending_[next_++];
-    t.budget = plan_.scenes[t.scene].time_limit;
-    if (options_.time_limit > 0) {
-      const double left = options_.time_limit - elapsed;
-      t.budget = t.budget > 0 ? std::min(t.budget, left) : left;
+    while (next_ < pending_.size()) {
+      Task t = pending_[next_++];
+      const SceneJob& job = plan_.scenes[t.scene];
+      Best& b = best_[t.scene];
+      if (b.started_s < 0) b.started_s = elapsed;
+      const double scene_left = job.time_limit > 0 ? job.time_limit - (elapsed - b.started_s) : 0.0;
+      if (job.time_limit > 0 && scene_left <= 0) {
+        b.time_limited = true;
+        continue;
+      }
+      double budget = job.start_time_limit;
+      auto cap = [&](double left) { budget = budget > 0 ? std::min(budget, left) : left; };
+      if (job.time_limit > 0) cap(scene_left);
+      if (options_.time_limit > 0) cap(options_.time_limit - elapsed);
+      t.budget = budget;
+      return t;
     }
-    return t;
+    return std::nullopt;
   }
 
   void record(const StartOutcome& o, const json* solution) {
@@ -121,16 +134,13 @@ class Search {
     if (improved && solution != nullptr)
       write_json_file(options_.out + "/best/" + o.scene + ".json", *solution);
     write_best();
-    const Best& b = best_[s];
     const double elapsed = seconds();
     const int ran_now = finished_ - resumed_;
     const double eta = ran_now > 0 ? elapsed / ran_now * (total_ - finished_) : 0.0;
     spdlog::info("[{}/{}] {} start {} (rank {}): {}{} in {:.1f} s | best {} | elapsed {} ETA {}",
                  finished_, total_, o.scene, o.start, o.rank, o.status,
                  o.solved() ? fmt::format(" T_f {:.6f}", o.T_f) : std::string(), o.seconds,
-                 b.start >= 0 ? fmt::format("{:.6f} (start {})", b.T_f, b.start)
-                              : std::string("none"),
-                 clock_text(elapsed), clock_text(eta));
+                 best_summary(s), clock_text(elapsed), clock_text(eta));
   }
 
   void finish() {
@@ -153,9 +163,25 @@ class Search {
     StartOutcome outcome;
     int run = 0, solved = 0;
     double first_feasible_s = -1.0, best_s = -1.0;
+    double started_s = -1.0;    // search time its first start was handed out
+    bool time_limited = false;  // its own time limit stopped it
   };
 
   double seconds() const { return std::chrono::duration<double>(Clock::now() - t0_).count(); }
+
+  // Best T_f per scene (every scene when there are at most four, else the
+  // scene `s`), for the progress line.
+  std::string best_summary(int s) const {
+    auto one = [&](std::size_t k) {
+      const Best& b = best_[k];
+      return plan_.scenes[k].scene.name + " " +
+             (b.start >= 0 ? fmt::format("{:.6f}", b.T_f) : std::string("-"));
+    };
+    if (best_.size() > 4) return s >= 0 ? one(static_cast<std::size_t>(s)) : std::string();
+    std::string out;
+    for (std::size_t k = 0; k < best_.size(); ++k) out += (k ? ", " : "") + one(k);
+    return out;
+  }
 
   // A rough cost of one start: unknowns per step times steps.
   static double cost(const Scene& s) {
@@ -221,7 +247,9 @@ class Search {
                 {"starts_run", b.run},
                 {"starts_solved", b.solved},
                 {"time_to_first_feasible_s", b.first_feasible_s >= 0 ? json(b.first_feasible_s) : json(nullptr)},
-                {"time_to_best_s", b.best_s >= 0 ? json(b.best_s) : json(nullptr)}};
+                {"time_to_best_s", b.best_s >= 0 ? json(b.best_s) : json(nullptr)},
+                {"time_limit_s", plan_.scenes[s].time_limit},
+                {"time_limit_reached", b.time_limited}};
       if (b.start >= 0) {
         j["T_f"] = b.T_f;
         j["start"] = b.start;
@@ -337,7 +365,7 @@ int run_search(const SearchOptions& o) {
   c.schedule = reduction_settings(c.settings);
   c.elastic = elastic_settings(c.settings);
   IpoptSolver check(ipopt_options(c.settings));  // bad Ipopt options fail here, on every rank
-  c.plan = load_search_plan(o.configs, o.starts, 1, 0.0, scene_sets);
+  c.plan = load_search_plan(o.configs, o.starts, 1, scene_sets);
 
   if (rank != 0) {
     worker_loop(c);

@@ -56,26 +56,29 @@ int SearchPlan::total_starts() const {
 }
 
 SearchPlan load_search_plan(const std::vector<std::string>& configs, int starts_override,
-                            int default_starts, double default_time_limit,
-                            const std::vector<std::string>& scene_overrides) {
+                            int default_starts, const std::vector<std::string>& scene_overrides) {
   SearchPlan plan;
   auto add = [&](const std::string& path, std::vector<std::string> sets, int starts,
-                 double time_limit) {
+                 double time_limit, double start_time_limit) {
     sets.insert(sets.end(), scene_overrides.begin(), scene_overrides.end());
     SceneJob job{load_scene(path, sets), starts_override > 0 ? starts_override : starts,
-                 time_limit};
+                 time_limit, start_time_limit};
     plan.scenes.push_back(std::move(job));
   };
   for (const auto& path : configs) {
     const YAML::Node root = yaml::load(yaml::read_file(path, "config file"), path);
     if (!root.IsMap() || !root["benchmark"]) {
-      add(path, {}, default_starts, default_time_limit);
+      add(path, {}, default_starts, 0.0, 0.0);
       continue;
     }
-    check_keys(path, root, "", {"benchmark", "description", "starts", "time_limit", "scenes"});
+    check_keys(path, root, "",
+               {"benchmark", "description", "starts", "time_limit", "start_time_limit", "scenes"});
     const int starts = root["starts"] ? read_int(path, root["starts"], "starts", 1) : default_starts;
-    const double limit =
-        root["time_limit"] ? read_seconds(path, root["time_limit"], "time_limit") : default_time_limit;
+    auto seconds_or = [&](const YAML::Node& n, const std::string& key, double fallback) {
+      return n ? read_seconds(path, n, key) : fallback;
+    };
+    const double limit = seconds_or(root["time_limit"], "time_limit", 0.0);
+    const double start_limit = seconds_or(root["start_time_limit"], "start_time_limit", 0.0);
     const YAML::Node scenes = root["scenes"];
     if (!scenes || !scenes.IsSequence() || scenes.size() == 0)
       fail(path, scenes ? scenes : root, "scenes", "must be a non-empty list of scene entries");
@@ -84,7 +87,7 @@ SearchPlan load_search_plan(const std::vector<std::string>& configs, int starts_
       const YAML::Node e = scenes[k];
       const std::string where = "scenes[" + std::to_string(k) + "]";
       if (!e.IsMap()) fail(path, e, where, "must be a mapping with a 'file' key");
-      check_keys(path, e, where, {"file", "starts", "time_limit", "set"});
+      check_keys(path, e, where, {"file", "starts", "time_limit", "start_time_limit", "set"});
       if (!e["file"] || !e["file"].IsScalar()) fail(path, e, where + ".file", "missing scene file");
       std::vector<std::string> sets;
       if (e["set"]) {
@@ -93,7 +96,8 @@ SearchPlan load_search_plan(const std::vector<std::string>& configs, int starts_
       }
       add((dir / e["file"].as<std::string>()).string(), sets,
           e["starts"] ? read_int(path, e["starts"], where + ".starts", 1) : starts,
-          e["time_limit"] ? read_seconds(path, e["time_limit"], where + ".time_limit") : limit);
+          seconds_or(e["time_limit"], where + ".time_limit", limit),
+          seconds_or(e["start_time_limit"], where + ".start_time_limit", start_limit));
     }
   }
   std::set<std::string> names;

@@ -5,11 +5,14 @@
 //
 //   benchmark: smoke              # the key that marks a benchmark file
 //   starts: 4                     # optional default starts per scene (>= 1)
-//   time_limit: 60                # optional default seconds per start (> 0; 0 = none)
+//   time_limit: 600               # optional default seconds per scene (0 = none): no start
+//                                 # of the scene is handed out after it
+//   start_time_limit: 60          # optional default seconds per start (0 = none)
 //   scenes:
 //     - file: ../scenarios/one_robot_axis.yaml   # relative to this file
 //       starts: 3                 # optional
-//       time_limit: 20            # optional
+//       time_limit: 120           # optional
+//       start_time_limit: 20      # optional
 //       set: [steps=20]           # optional scene overrides (as --set scene.KEY=VALUE)
 //
 // --starts N on the command line replaces every scene's number of starts.
@@ -27,7 +30,8 @@ namespace disco {
 struct SceneJob {
   Scene scene;
   int starts = 1;
-  double time_limit = 0.0;  // s per start; 0 = none
+  double time_limit = 0.0;        // s for all the scene's starts, from its first; 0 = none
+  double start_time_limit = 0.0;  // s per start; 0 = none
 };
 
 struct SearchPlan {
@@ -35,11 +39,10 @@ struct SearchPlan {
   int total_starts() const;
 };
 
-// `starts_override` > 0 replaces every scene's starts; `default_starts` and
-// `default_time_limit` apply where a file gives none; `scene_overrides` apply
-// to every scene (after a benchmark entry's own `set`).
+// `starts_override` > 0 replaces every scene's starts; `default_starts`
+// applies where a file gives none (time limits default to none);
+// `scene_overrides` apply to every scene (after a benchmark entry's own `set`).
 SearchPlan load_search_plan(const std::vector<std::string>& configs, int starts_override,
-                            int default_starts, double default_time_limit,
-                            const std::vector<std::string>& scene_overrides);
+                            int default_starts, const std::vector<std::string>& scene_overrides);
 
 }  // namespace disco

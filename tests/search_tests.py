@@ -9,6 +9,9 @@ MODE:
                status, T_f bit for bit) and the same best T_f per scene.
   resume       a 2-rank search killed after its first finished start, then --resume:
                every start exactly once in runs.jsonl, the same best as a clean run.
+  timelimit    --time-limit 3 on one rank: hands out no start after 3 s, ends soon after
+               (starts in flight get only the time left), says so in best.json, and
+               keeps the best of what finished.
 """
 import json
 import os
@@ -109,6 +112,21 @@ elif MODE == "resume":
     check_consistent(out, "resumed")
     check({k: v["T_f"] for k, v in best(out)["scenes"].items()} ==
           {k: v["T_f"] for k, v in best(clean)["scenes"].items()}, "resumed best equals the clean run's")
+elif MODE == "timelimit":
+    out = os.path.join(WORK, "timelimit")
+    t0 = time.time()
+    code = search(out, 1, "--time-limit", "3")
+    wall = time.time() - t0
+    b = best(out)
+    check(code in (0, 3), f"time-limited search exits 0 or 3 (got {code})")
+    check(wall < 3 + 10, f"ends soon after the limit ({wall:.1f} s)")
+    check(b["time_limit_reached"] is True, "best.json says the time limit was reached")
+    check(0 < b["starts_finished"] < b["starts_total"], f"{b['starts_finished']} of {b['starts_total']} starts ran")
+    rs = runs(out)
+    check(len(rs) == b["starts_finished"], "runs.jsonl holds every finished start")
+    for scene, sb in b["scenes"].items():
+        solved = [r["T_f"] for r in rs if r["scene"] == scene and r["status"] == "solved"]
+        check(sb["T_f"] == (min(solved) if solved else None), f"{scene}: best of what finished")
 else:
     sys.exit(f"unknown mode {MODE}")
 
