@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/util/check.h"
 #include "core/util/errors.h"
 #include "core/util/numbers.h"
 
@@ -40,7 +41,7 @@ ReductionSettings reduction_settings(const Settings& s) {
 
 ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
                                  const ReductionSettings& cfg, const GuessFunction& guess,
-                                 const SolveCallback& on_solve) {
+                                 const SolveCallback& on_solve, const PerturbFunction& perturb) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - t0).count(); };
@@ -77,6 +78,22 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
   if (!out.found) {
     out.seconds = elapsed();
     return out;
+  }
+
+  // 1b. Once more from a perturbation of the feasible point, if asked.
+  if (perturb && !(cfg.time_limit > 0 && elapsed() > cfg.time_limit)) {
+    const Perturbation p = perturb(out.best.z);
+    DISCO_CHECK(p.seconds > 0.0, "a perturbation's horizon is positive");
+    DISCO_CHECK(p.guess.size() == out.best.z.size(), "a perturbation's guess is a model point");
+    problem.fix_horizon(p.seconds);
+    MpccResult r = solver.solve(problem.program(), p.guess);
+    const bool ok = r.solved();
+    record("perturbed feasibility", p.seconds, r, ok);
+    if (ok) {
+      out.best = std::move(r);
+      out.T_best = problem.horizon(out.best.z);
+      out.time_to_best = elapsed();
+    }
   }
 
   // 2. Inexact objective reduction.

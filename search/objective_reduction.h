@@ -5,6 +5,13 @@
 //      time: the slowest robot's straight move alone) and solve
 //      the elastic MPCC from the guess (the objective is then constant). If it
 //      is not solved, double T_f and try again (three times at most).
+//   1b. Optional perturbation (a PerturbFunction, below): called once with the
+//      certified feasible point, it returns another guess and a fixed horizon;
+//      the elastic MPCC is solved there once more, from that guess (a cold
+//      start), and recorded as phase "perturbed feasibility". If that solve is
+//      certified, its point becomes the best and the reduction continues from
+//      it; otherwise the reduction continues from the feasible point of step 1
+//      exactly as without a perturbation. Skipped past the time limit.
 //   2. Reduction: with r = rate, require T_f <= (1 - r) T_best, warm-started
 //      from the best point. A certified solution with a smaller T_f becomes
 //      the best and r *= grow (at most 0.5); anything else r *= shrink. Stop
@@ -45,8 +52,9 @@ ReductionSettings reduction_settings(const Settings& settings);  // `feasibility
 
 // One elastic-mode solve (possibly several Ipopt solves inside).
 struct SolveRecord {
-  std::string phase;   // "feasibility", "reduction", "fixed step" or "minimize"
-  double bound = 0.0;  // s: the fixed T_f (feasibility) or the upper bound on T_f
+  std::string phase;   // "feasibility", "perturbed feasibility", "reduction", "fixed step" or
+                       // "minimize"
+  double bound = 0.0;  // s: the fixed T_f (feasibility phases) or the upper bound on T_f
   double T_f = 0.0;    // s: at the solve's end
   MpccStatus status = MpccStatus::kFailed;
   int ipopt_status = 0;
@@ -73,9 +81,19 @@ using SolveCallback = std::function<void(const SolveRecord&)>;
 // The initial guess for a feasibility horizon of `seconds` (model-unit z).
 using GuessFunction = std::function<Vector(double seconds)>;
 
-// `guess` defaults to RobotProblem::straight_line_guess.
+// Step 1b: a guess and the fixed horizon (seconds) to solve it at.
+struct Perturbation {
+  Vector guess;          // model-unit z, the size of the program's variables
+  double seconds = 0.0;  // > 0
+};
+// Called once with the certified feasible point of step 1 (model-unit z).
+using PerturbFunction = std::function<Perturbation(const Vector& feasible)>;
+
+// `guess` defaults to RobotProblem::straight_line_guess; without `perturb`,
+// step 1b is skipped.
 ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
                                  const ReductionSettings& settings, const GuessFunction& guess = {},
-                                 const SolveCallback& on_solve = {});
+                                 const SolveCallback& on_solve = {},
+                                 const PerturbFunction& perturb = {});
 
 }  // namespace disco

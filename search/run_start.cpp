@@ -77,7 +77,8 @@ StartOutcome run_start(const Scene& scene, const Settings& settings, const Start
     ElasticSolver solver(ipopt, elastic);
     RobotProblem problem(scene);
     const ReductionResult r = reduce_objective(
-        problem, solver, schedule, [&](double T) { return make_guess(problem, start, T); });
+        problem, solver, schedule, [&](double T) { return make_guess(problem, start, T); }, {},
+        make_perturbation(problem, start));
     out.status = to_string(r.status);
     out.nlp_solves = r.nlp_solves;
     out.iterations = r.iterations;

@@ -15,14 +15,17 @@
 // Parameters. Start `index` >= 1 draws, in this fixed order, from a
 // std::mt19937_64 (fully specified by the standard) seeded with FNV-1a over
 // (seed, scene name, index, stream 0): horizon_factor, rate, grow, shrink,
-// perturbation, zeta. Uniform reals are made here from the generator's bits
-// (std::uniform_real_distribution is implementation-defined), so a start is
-// the same with any standard library. Every draw is made whatever the kind,
-// so the kind never shifts the other parameters.
+// perturbation, zeta, min_rate, T_scale (the last two were added later, after
+// the others, so that those keep their values). Uniform reals are made here
+// from the generator's bits (std::uniform_real_distribution is
+// implementation-defined), so a start is the same with any standard library.
+// Every draw is made whatever the kind, so the kind never shifts the other
+// parameters.
 //
 // Kinds. (index - 1) % 4 = 0: perturbed, 1: detour left, 2: detour right,
-// 3: perturbed. A detour needs a conflicting pair (below); without one the
-// start is perturbed.
+// 3: perturbed feasible. A detour needs a conflicting pair (below); without
+// one, slots 1 and 2 become perturbed feasible and perturbed, so the kinds
+// alternate.
 //
 // Paths. Every guess is a set of position paths, completed into a full model
 // point by RobotProblem::guess_from_paths. The straight path of a robot goes
@@ -52,6 +55,19 @@
 // p sum_k c_k sin(k pi tau) / (k pi), k = 1..2, c_k in [-1, 1], along the path
 // (w(s(tau)) replaces w(tau)), monotone since s' >= 1 - 2 p > 0 for p < 0.5.
 // The shape's random numbers come from stream 1 of the start's generator.
+//
+// Perturbed feasible. The guess is the straight one; the perturbation (step
+// 1b of objective_reduction.h) takes each robot's path from the feasible
+// point, (x, y, phi) at t = 0..N (t = 0 the start), and re-times it: state t
+// of the new path is the old path at the continuous step N s(t / N), linearly
+// interpolated between the neighbouring states, with s(tau) = tau + p sum_k
+// c_k sin(k pi tau) / (k pi), k = 1..2, c_k uniform in [-1, 1] per robot
+// (stream 1), p = perturbation: s(0) = 0, s(1) = 1, s' >= 1 - 2 p > 0. The
+// t = N state is the feasible end state exactly (in the target box). Robots get
+// different warps, so their relative timing changes too. Velocities,
+// friction, forces and gaps follow from the new positions
+// (RobotProblem::guess_from_paths) for the horizon T_scale times the feasible
+// one.
 
 namespace disco {
 namespace {
@@ -242,6 +258,39 @@ Paths perturbed_paths(const Scene& scene, const StartSpec& start) {
   return build_paths(scene, warp, offset);
 }
 
+// The feasible point's paths re-timed (see "Perturbed feasible" above).
+Paths retimed_paths(const RobotProblem& problem, const StartSpec& start, const Vector& z) {
+  const Scene& scene = problem.scene();  // SI
+  const Layout& lay = problem.layout();
+  const int N = scene.steps, nr = static_cast<int>(scene.robots.size());
+  const double L = problem.units().length;
+  const double p = start.perturbation;
+  std::mt19937_64 g = generator(start.seed, scene.name, start.index, 1);
+  Paths paths(nr, std::vector<std::array<double, 3>>(N + 1));
+  for (int i = 0; i < nr; ++i) {
+    std::array<double, 2> c;
+    for (double& a : c) a = uniform(g, -1.0, 1.0);
+    // The feasible path, SI.
+    std::vector<std::array<double, 3>> old(N + 1);
+    old[0] = {scene.robots[i].start[kX], scene.robots[i].start[kY], scene.robots[i].start[kPhi]};
+    for (int t = 1; t <= N; ++t)
+      old[t] = {z[lay.state_index(i, t, kX)] * L, z[lay.state_index(i, t, kY)] * L,
+                z[lay.state_index(i, t, kPhi)]};
+    paths[i][0] = old[0];
+    for (int t = 1; t < N; ++t) {
+      const double tau = static_cast<double>(t) / N;
+      double s = tau;
+      for (int k = 0; k < 2; ++k) s += p * c[k] * std::sin((k + 1) * kPi * tau) / ((k + 1) * kPi);
+      const double u = N * std::clamp(s, 0.0, 1.0);
+      const int k = std::min(N - 1, static_cast<int>(std::floor(u)));
+      const double f = u - k;
+      for (int d = 0; d < 3; ++d) paths[i][t][d] = old[k][d] + f * (old[k + 1][d] - old[k][d]);
+    }
+    paths[i][N] = old[N];
+  }
+  return paths;
+}
+
 }  // namespace
 
 std::string to_string(GuessKind kind) {
@@ -249,6 +298,7 @@ std::string to_string(GuessKind kind) {
     case GuessKind::kStraight: return "straight";
     case GuessKind::kPerturbed: return "perturbed";
     case GuessKind::kDetour: return "detour";
+    case GuessKind::kPerturbedFeasible: return "perturbed feasible";
   }
   return "unknown";
 }
@@ -261,11 +311,16 @@ std::string StartSpec::describe() const {
   } else if (guess == GuessKind::kPerturbed) {
     std::snprintf(buf, sizeof buf, " %.2f", perturbation);
     kind += buf;
+  } else if (guess == GuessKind::kPerturbedFeasible) {
+    std::snprintf(buf, sizeof buf, " %.2f, T x%.2f", perturbation, T_scale);
+    kind += buf;
   }
   char line[256];
-  std::snprintf(line, sizeof line, "start %d: %s, horizon x%.2f, rate %.3f, grow %.2f, shrink %.2f, zeta %g",
+  std::snprintf(line, sizeof line,
+                "start %d: %s, horizon x%.2f, rate %.3f, grow %.2f, shrink %.2f, min rate %.4f, "
+                "zeta %g",
                 index, kind.c_str(), schedule.horizon_factor, schedule.rate, schedule.grow,
-                schedule.shrink, elastic.zeta);
+                schedule.shrink, schedule.min_rate, elastic.zeta);
   return line;
 }
 
@@ -287,14 +342,21 @@ StartSpec make_start(const Scene& scene, std::uint64_t seed, int index,
   const double perturbation = uniform(g, 0.05, 0.3);
   static constexpr double kZeta[3] = {1.0, 10.0, 100.0};  // uniform in log10(zeta)
   s.elastic.zeta = kZeta[std::min(2, static_cast<int>(3.0 * uniform01(g)))];
+  // Added after the draws above: those keep their values.
+  s.schedule.min_rate = uniform(g, 0.005, 0.02);
+  const double T_scale = uniform(g, 0.8, 1.0);
 
   const int slot = (index - 1) % 4;
   if ((slot == 1 || slot == 2) && !conflicts(scene).empty()) {
     s.guess = GuessKind::kDetour;
     s.detour_side = slot == 1 ? +1 : -1;
-  } else {
+  } else if (slot % 2 == 0) {
     s.guess = GuessKind::kPerturbed;
     s.perturbation = perturbation;
+  } else {
+    s.guess = GuessKind::kPerturbedFeasible;
+    s.perturbation = perturbation;
+    s.T_scale = T_scale;
   }
   return s;
 }
@@ -306,8 +368,23 @@ Vector make_guess(const RobotProblem& problem, const StartSpec& start, double se
       return problem.guess_from_paths(perturbed_paths(problem.scene(), start), seconds);
     case GuessKind::kDetour:
       return problem.guess_from_paths(detour_paths(problem.scene(), start.detour_side), seconds);
+    case GuessKind::kPerturbedFeasible: return problem.straight_line_guess(seconds);
   }
   return problem.straight_line_guess(seconds);
+}
+
+Perturbation perturb_feasible(const RobotProblem& problem, const StartSpec& start,
+                              const Vector& feasible) {
+  DISCO_CHECK(feasible.size() == problem.program().num_variables(), "a model point");
+  const double seconds = start.T_scale * problem.horizon(feasible);
+  return {problem.guess_from_paths(retimed_paths(problem, start, feasible), seconds), seconds};
+}
+
+PerturbFunction make_perturbation(const RobotProblem& problem, const StartSpec& start) {
+  if (start.guess != GuessKind::kPerturbedFeasible) return {};
+  return [&problem, start](const Vector& feasible) {
+    return perturb_feasible(problem, start, feasible);
+  };
 }
 
 }  // namespace disco

@@ -1,8 +1,9 @@
 // The starts of the multi-start search (search/start.h): deterministic
 // parameters within their ranges, start 0 = what `disco solve` runs, detours
 // only where straight paths conflict and on the requested side, perturbed
-// guesses that keep the start and the target, and a detour start that the
-// objective reduction turns into a certified solution.
+// guesses that keep the start and the target, perturbed feasible starts that
+// re-time a feasible point with consistent kinematics, and a detour start that
+// the objective reduction turns into a certified solution.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -97,7 +98,7 @@ bool same_elastic(const ElasticSettings& a, const ElasticSettings& b) {
 bool same_spec(const StartSpec& a, const StartSpec& b) {
   return a.index == b.index && a.seed == b.seed && a.guess == b.guess &&
          a.detour_side == b.detour_side && a.perturbation == b.perturbation &&
-         same_schedule(a.schedule, b.schedule) && same_elastic(a.elastic, b.elastic);
+         a.T_scale == b.T_scale && same_schedule(a.schedule, b.schedule) && same_elastic(a.elastic, b.elastic);
 }
 
 bool bitwise_equal(const Vector& a, const Vector& b) {
@@ -162,6 +163,7 @@ TEST(Start, DifferentSeedIndexOrSceneGiveDifferentParameters) {
     EXPECT_NE(a.schedule.rate, o->schedule.rate) << o->describe();
     EXPECT_NE(a.schedule.grow, o->schedule.grow) << o->describe();
     EXPECT_NE(a.schedule.shrink, o->schedule.shrink) << o->describe();
+    EXPECT_NE(a.schedule.min_rate, o->schedule.min_rate) << o->describe();
   }
   // Perturbed guesses of different seeds differ too (start 5 is perturbed).
   ASSERT_EQ(a.guess, GuessKind::kPerturbed);
@@ -180,20 +182,23 @@ TEST(Start, IndexZeroIsTheBaseSettingsAndTheStraightGuess) {
     EXPECT_EQ(s.guess, GuessKind::kStraight);
     EXPECT_EQ(s.detour_side, 0);
     EXPECT_EQ(s.perturbation, 0.0);
+    EXPECT_EQ(s.T_scale, 1.0);
     EXPECT_TRUE(same_schedule(s.schedule, base_schedule()));
     EXPECT_TRUE(same_elastic(s.elastic, base_elastic()));
     const RobotProblem rp(scene);
     for (double T : {1.0, 4.56})
       EXPECT_TRUE(bitwise_equal(make_guess(rp, s, T), rp.straight_line_guess(T))) << T;
     EXPECT_EQ(s.describe(),
-              "start 0: straight, horizon x1.70, rate 0.040, grow 1.30, shrink 0.60, zeta 3");
+              "start 0: straight, horizon x1.70, rate 0.040, grow 1.30, shrink 0.60, min rate 0.0030, "
+              "zeta 3");
   }
 }
 
 TEST(Start, ParametersStayInTheirRangesAndOtherFieldsAreKept) {
   const Scene scene = scenario("two_robots_swap_avoid");
   std::set<double> zetas;
-  int perturbed = 0, left = 0, right = 0;
+  int perturbed = 0, left = 0, right = 0, feasible = 0;
+  double min_rate_lo = 1.0, min_rate_hi = 0.0, scale_lo = 2.0, scale_hi = 0.0;
   for (int index = 1; index <= 200; ++index) {
     const StartSpec s = make_start(scene, 2026, index, base_schedule(), base_elastic());
     SCOPED_TRACE(s.describe());
@@ -209,36 +214,86 @@ TEST(Start, ParametersStayInTheirRangesAndOtherFieldsAreKept) {
     EXPECT_LE(s.schedule.shrink, 0.7);
     EXPECT_TRUE(s.elastic.zeta == 1.0 || s.elastic.zeta == 10.0 || s.elastic.zeta == 100.0);
     zetas.insert(s.elastic.zeta);
+    EXPECT_GE(s.schedule.min_rate, 0.005);
+    EXPECT_LE(s.schedule.min_rate, 0.02);
+    EXPECT_LT(s.schedule.min_rate, s.schedule.rate);
+    min_rate_lo = std::min(min_rate_lo, s.schedule.min_rate);
+    min_rate_hi = std::max(min_rate_hi, s.schedule.min_rate);
     // Everything else is the base.
     ReductionSettings r = s.schedule;
     r.horizon_factor = base_schedule().horizon_factor;
     r.rate = base_schedule().rate;
     r.grow = base_schedule().grow;
     r.shrink = base_schedule().shrink;
+    r.min_rate = base_schedule().min_rate;
     EXPECT_TRUE(same_schedule(r, base_schedule()));
     ElasticSettings e = s.elastic;
     e.zeta = base_elastic().zeta;
     EXPECT_TRUE(same_elastic(e, base_elastic()));
-    // The kinds cycle: perturbed, detour left, detour right, perturbed.
+    // The kinds cycle: perturbed, detour left, detour right, perturbed feasible.
     const int slot = (index - 1) % 4;
-    if (slot == 0 || slot == 3) {
+    if (slot == 0) {
       EXPECT_EQ(s.guess, GuessKind::kPerturbed);
       EXPECT_GE(s.perturbation, 0.05);
       EXPECT_LE(s.perturbation, 0.3);
       EXPECT_EQ(s.detour_side, 0);
+      EXPECT_EQ(s.T_scale, 1.0);
       ++perturbed;
+    } else if (slot == 3) {
+      EXPECT_EQ(s.guess, GuessKind::kPerturbedFeasible);
+      EXPECT_GE(s.perturbation, 0.05);
+      EXPECT_LE(s.perturbation, 0.3);
+      EXPECT_EQ(s.detour_side, 0);
+      EXPECT_GE(s.T_scale, 0.8);
+      EXPECT_LE(s.T_scale, 1.0);
+      scale_lo = std::min(scale_lo, s.T_scale);
+      scale_hi = std::max(scale_hi, s.T_scale);
+      EXPECT_NE(s.describe().find("perturbed feasible"), std::string::npos);
+      EXPECT_NE(s.describe().find(", T x"), std::string::npos);
+      ++feasible;
     } else {
       EXPECT_EQ(s.guess, GuessKind::kDetour);
       EXPECT_EQ(s.detour_side, slot == 1 ? +1 : -1);
       EXPECT_EQ(s.perturbation, 0.0);
+      EXPECT_EQ(s.T_scale, 1.0);
       EXPECT_NE(s.describe().find(slot == 1 ? "detour left" : "detour right"), std::string::npos);
       (slot == 1 ? left : right)++;
     }
   }
   EXPECT_EQ(zetas.size(), 3u);
-  EXPECT_EQ(perturbed, 100);
+  EXPECT_EQ(perturbed, 50);
+  EXPECT_EQ(feasible, 50);
   EXPECT_EQ(left, 50);
   EXPECT_EQ(right, 50);
+  // The draws cover their ranges.
+  EXPECT_LT(min_rate_lo, 0.007);
+  EXPECT_GT(min_rate_hi, 0.018);
+  EXPECT_LT(scale_lo, 0.83);
+  EXPECT_GT(scale_hi, 0.97);
+}
+
+TEST(Start, WithoutConflictsPerturbedAndPerturbedFeasibleAlternate) {
+  const Scene scene = apart_scene();
+  for (int index = 1; index <= 40; ++index) {
+    const StartSpec s = make_start(scene, 5, index, base_schedule(), base_elastic());
+    EXPECT_EQ(s.guess, (index - 1) % 2 == 0 ? GuessKind::kPerturbed
+                                             : GuessKind::kPerturbedFeasible)
+        << s.describe();
+  }
+}
+
+TEST(Start, NewDrawsKeepTheEarlierParameters) {
+  // Start 5 (perturbed) of two_robots_swap_avoid under seed 1, as drawn
+  // before min_rate and T_scale were appended to the stream: unchanged.
+  const StartSpec s = make_start(scenario("two_robots_swap_avoid"), 1, 5, base_schedule(),
+                                 base_elastic());
+  EXPECT_EQ(s.guess, GuessKind::kPerturbed);
+  EXPECT_EQ(s.schedule.horizon_factor, 0x1.0246a53d7bccdp+1);
+  EXPECT_EQ(s.schedule.rate, 0x1.766c556b2c01ap-3);
+  EXPECT_EQ(s.schedule.grow, 0x1.ee9b7d1398238p+0);
+  EXPECT_EQ(s.schedule.shrink, 0x1.03ed8c7cda43bp-1);
+  EXPECT_EQ(s.perturbation, 0x1.b0a3863dc752cp-3);
+  EXPECT_EQ(s.elastic.zeta, 1.0);
 }
 
 TEST(Start, DetourOnlyWhenStraightPathsConflict) {
@@ -375,6 +430,82 @@ TEST(Start, PerturbedGuessesDifferFromStraightButKeepStartAndTarget) {
       }
     }
   }
+}
+
+TEST(Start, PerturbedFeasibleRetimesTheFeasiblePathsWithConsistentKinematics) {
+  for (const Scene& scene : {scenario("two_robots_swap_avoid"), scenario("three_robots_contact"),
+                             apart_scene()}) {
+    const RobotProblem rp(scene);
+    const Layout& lay = rp.layout();
+    const Scene& ms = lay.scene();  // model units
+    const int N = scene.steps;
+    // A stand-in for a feasible point: a guess whose paths are not straight.
+    const double T = 4.0;
+    const bool conflict = scene.name != "apart";
+    const Vector feasible =
+        make_guess(rp, conflict ? find_start(scene, GuessKind::kDetour, +1)
+                                : find_start(scene, GuessKind::kPerturbed),
+                   T);
+    for (std::uint64_t seed : {7u, 8u}) {
+      const StartSpec s = find_start(scene, GuessKind::kPerturbedFeasible, 0, seed);
+      SCOPED_TRACE(scene.name + ": " + s.describe());
+      // Its feasibility phase starts from the straight lines.
+      EXPECT_TRUE(bitwise_equal(make_guess(rp, s, T), rp.straight_line_guess(T)));
+      EXPECT_TRUE(static_cast<bool>(make_perturbation(rp, s)));
+      // Deterministic.
+      const Perturbation p = perturb_feasible(rp, s, feasible);
+      const Perturbation again = make_perturbation(rp, s)(feasible);
+      EXPECT_TRUE(bitwise_equal(p.guess, again.guess));
+      EXPECT_EQ(p.seconds, again.seconds);
+      ASSERT_TRUE(all_finite(p.guess));
+      ASSERT_EQ(p.guess.size(), feasible.size());
+      // The horizon: T_scale times the feasible one.
+      EXPECT_NEAR(p.seconds, s.T_scale * T, 1e-12 * T);
+      EXPECT_NEAR(rp.horizon(p.guess), p.seconds, 1e-12 * T);
+      const double h = p.guess[lay.horizon_index()] / N;  // model units
+      double moved = 0.0;
+      for (int i = 0; i < static_cast<int>(ms.robots.size()); ++i) {
+        const Robot& rb = ms.robots[i];
+        auto at = [&](const Vector& z, int t, int c) {
+          return t == 0 ? rb.start[c] : z[lay.state_index(i, t, c)];
+        };
+        for (int c : {kX, kY, kPhi}) {
+          const int v = c == kX ? kVx : c == kY ? kVy : kOmega;
+          // The end state of the feasible point is kept.
+          const double end = at(feasible, N, c);
+          EXPECT_NEAR(at(p.guess, N, c), end, 1e-12 * (1.0 + std::abs(end)))
+              << "robot " << i << " component " << c;
+          for (int t = 0; t < N; ++t) {
+            // Kinematics: x[t+1] - x[t] = h v[t+1], from the exact start on.
+            const double dx = at(p.guess, t + 1, c) - at(p.guess, t, c);
+            const double hv = h * p.guess[lay.state_index(i, t + 1, v)];
+            EXPECT_NEAR(dx, hv, 1e-9 * std::abs(dx) + 1e-15) << "robot " << i << " t " << t;
+            moved = std::max(moved, std::abs(at(p.guess, t + 1, c) - at(feasible, t + 1, c)));
+          }
+        }
+      }
+      EXPECT_GT(moved, 1e-3);  // re-timed, not copied
+      // Re-timing keeps a monotone coordinate monotone: robot 0 of the swap
+      // moves along +x on its detour.
+      if (scene.name == "two_robots_swap_avoid") {
+        double x = ms.robots[0].start[kX];
+        for (int t = 1; t <= N; ++t) {
+          const double next = p.guess[lay.state_index(0, t, kX)];
+          EXPECT_GE(next, x) << "t " << t;
+          x = next;
+        }
+      }
+    }
+  }
+}
+
+TEST(Start, OtherKindsHaveNoPerturbation) {
+  const Scene scene = scenario("two_robots_swap_avoid");
+  const RobotProblem rp(scene);
+  for (const StartSpec& s : {make_start(scene, 7, 0, base_schedule(), base_elastic()),
+                             find_start(scene, GuessKind::kPerturbed),
+                             find_start(scene, GuessKind::kDetour, +1)})
+    EXPECT_FALSE(static_cast<bool>(make_perturbation(rp, s))) << s.describe();
 }
 
 TEST(Start, ReductionFromADetourStartReachesACertifiedSolution) {

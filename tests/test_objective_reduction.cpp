@@ -1,0 +1,137 @@
+// The objective reduction's perturbation hook (search/objective_reduction.h,
+// step 1b): a perturbed feasible start reaches a certified solution and
+// records its extra solve; a perturbation that cannot be certified leaves the
+// reduction exactly as without one; start 0 of the search is bit-identical to
+// `disco solve`.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "core/config/settings.h"
+#include "core/config/solver_settings.h"
+#include "core/model/robot_problem.h"
+#include "core/model/scene_yaml.h"
+#include "search/objective_reduction.h"
+#include "search/run_start.h"
+#include "search/solve_scene.h"
+#include "search/start.h"
+
+namespace disco {
+namespace {
+
+Scene scenario(const std::string& name, const std::vector<std::string>& overrides = {}) {
+  return load_scene(std::string(DISCO_SOURCE_DIR) + "/configs/scenarios/" + name + ".yaml",
+                    overrides);
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+int count_phase(const ReductionResult& r, const std::string& phase) {
+  int n = 0;
+  for (const SolveRecord& s : r.solves) n += s.phase == phase;
+  return n;
+}
+
+TEST(ObjectiveReduction, PerturbedFeasibleStartReachesACertifiedSolution) {
+  const Scene scene = scenario("two_robots_swap_avoid", {"steps=20"});
+  const Settings settings = Settings::load(default_settings_path());
+  StartSpec start;
+  for (int index = 1; index < 20; ++index) {
+    start = make_start(scene, 3, index, reduction_settings(settings), elastic_settings(settings));
+    if (start.guess == GuessKind::kPerturbedFeasible) break;
+  }
+  ASSERT_EQ(start.guess, GuessKind::kPerturbedFeasible);
+  start.schedule.max_solves = 4;  // a few reduction steps are enough here (and keep it fast)
+  std::printf("%s\n", start.describe().c_str());
+  RobotProblem problem(scene);
+  IpoptSolver ipopt(ipopt_options(settings));
+  ElasticSolver solver(ipopt, start.elastic);
+  std::vector<std::string> phases;
+  const ReductionResult result = reduce_objective(
+      problem, solver, start.schedule,
+      [&](double seconds) { return make_guess(problem, start, seconds); },
+      [&](const SolveRecord& r) { phases.push_back(r.phase); },
+      make_perturbation(problem, start));
+  for (const SolveRecord& r : result.solves)
+    std::printf("  %-22s bound %.4f T_f %.4f %s%s\n", r.phase.c_str(), r.bound, r.T_f,
+                to_string(r.status).c_str(), r.improved ? " *" : "");
+  std::printf("T_best %.4f s, %zu solves, %d Ipopt iterations, %.2f s\n", result.T_best,
+              result.solves.size(), result.iterations, result.seconds);
+  ASSERT_TRUE(result.found) << to_string(result.status) << " " << result.feasibility_detail;
+  EXPECT_EQ(result.status, MpccStatus::kSolved);
+  EXPECT_TRUE(result.best.certificate.within(1e-6, 1e-6));
+  // One perturbed re-solve, right after the certified feasibility solve, at
+  // T_scale times its horizon; the callback saw every record.
+  ASSERT_EQ(count_phase(result, "perturbed feasibility"), 1);
+  size_t k = 0;
+  while (k < result.solves.size() && result.solves[k].phase != "perturbed feasibility") ++k;
+  ASSERT_GE(k, 1u);
+  const SolveRecord& feasible = result.solves[k - 1];
+  EXPECT_EQ(feasible.phase, "feasibility");
+  EXPECT_TRUE(feasible.improved);
+  EXPECT_NEAR(result.solves[k].bound, start.T_scale * feasible.T_f, 1e-9 * feasible.T_f);
+  EXPECT_EQ(phases.size(), result.solves.size());
+  // Never worse than the feasible point it started from.
+  EXPECT_LE(result.T_best, feasible.T_f);
+}
+
+TEST(ObjectiveReduction, AnUncertifiedPerturbationLeavesTheReductionAsWithout) {
+  const Scene scene = scenario("one_robot_axis", {"steps=20"});
+  const Settings settings = Settings::load(default_settings_path());
+  ReductionSettings schedule = reduction_settings(settings);
+  auto run = [&](const PerturbFunction& perturb) {
+    RobotProblem problem(scene);
+    IpoptSolver ipopt(ipopt_options(settings));
+    ElasticSolver solver(ipopt, elastic_settings(settings));
+    return reduce_objective(problem, solver, schedule, {}, {}, perturb);
+  };
+  const ReductionResult plain = run({});
+  ASSERT_TRUE(plain.found);
+  // Half the scene's lower bound: no certified point exists there.
+  const RobotProblem shape(scene);
+  const double impossible = 0.5 * shape.lower_bound().value();
+  int calls = 0;
+  const ReductionResult perturbed = run([&](const Vector&) {
+    ++calls;
+    return Perturbation{shape.straight_line_guess(impossible), impossible};
+  });
+  EXPECT_EQ(calls, 1);
+  ASSERT_TRUE(perturbed.found);
+  ASSERT_EQ(perturbed.solves.size(), plain.solves.size() + 1);
+  const SolveRecord& extra = perturbed.solves[1];
+  EXPECT_EQ(extra.phase, "perturbed feasibility");
+  EXPECT_NE(extra.status, MpccStatus::kSolved);
+  EXPECT_FALSE(extra.improved);
+  EXPECT_EQ(extra.bound, impossible);
+  // Everything else as without the perturbation, bit for bit.
+  EXPECT_TRUE(same_bits(perturbed.T_best, plain.T_best))
+      << perturbed.T_best << " vs " << plain.T_best;
+  for (size_t k = 0; k < plain.solves.size(); ++k) {
+    const SolveRecord& a = plain.solves[k];
+    const SolveRecord& b = perturbed.solves[k == 0 ? 0 : k + 1];
+    EXPECT_EQ(a.phase, b.phase) << k;
+    EXPECT_TRUE(same_bits(a.T_f, b.T_f)) << k;
+    EXPECT_EQ(a.iterations, b.iterations) << k;
+  }
+}
+
+TEST(ObjectiveReduction, StartZeroIsBitIdenticalToDiscoSolve) {
+  const Scene scene = scenario("one_robot_axis", {"steps=20"});
+  const Settings settings = Settings::load(default_settings_path());
+  const SceneSolve solve = solve_scene(scene, settings);
+  ASSERT_TRUE(solve.solved());
+  const StartSpec start =
+      make_start(scene, 2024, 0, reduction_settings(settings), elastic_settings(settings));
+  const StartOutcome outcome = run_start(scene, settings, start, 0.0);
+  ASSERT_TRUE(outcome.solved()) << outcome.status << " " << outcome.detail;
+  EXPECT_TRUE(same_bits(outcome.T_f, solve.T_f())) << outcome.T_f << " vs " << solve.T_f();
+  EXPECT_EQ(outcome.iterations, solve.result.iterations);
+  EXPECT_EQ(outcome.nlp_solves, solve.result.nlp_solves);
+}
+
+}  // namespace
+}  // namespace disco
