@@ -1,0 +1,57 @@
+// A start never takes the search down: whatever goes wrong inside it becomes
+// a recorded status (search/run_start.h).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "core/config/settings.h"
+#include "core/config/solver_settings.h"
+#include "core/model/scene_yaml.h"
+#include "search/run_start.h"
+
+namespace disco {
+namespace {
+
+Scene small_scene() {
+  return load_scene(std::string(DISCO_SOURCE_DIR) + "/configs/scenarios/one_robot_axis.yaml",
+                    {"steps=10"});
+}
+
+TEST(RunStart, AnExceptionInsideTheStartBecomesStatusError) {
+  // An option Ipopt rejects makes the solver's constructor throw inside the start.
+  Settings settings = Settings::load(default_settings_path());
+  settings.apply_override("ipopt.no_such_option=1");
+  const Scene scene = small_scene();
+  const StartSpec spec = make_start(scene, 1, 0, reduction_settings(settings),
+                                    elastic_settings(settings));
+  StartOutcome out;
+  EXPECT_NO_THROW(out = run_start(scene, settings, spec, 0.0));
+  EXPECT_EQ(out.status, "error");
+  EXPECT_NE(out.detail.find("no_such_option"), std::string::npos) << out.detail;
+  EXPECT_TRUE(std::isnan(out.T_f));
+  // The outcome survives the runs.jsonl round trip (NaN written as null).
+  const StartOutcome back = StartOutcome::from_json(nlohmann::json::parse(out.to_json().dump()));
+  EXPECT_EQ(back.status, "error");
+  EXPECT_TRUE(std::isnan(back.T_f));
+}
+
+TEST(RunStart, ASolvedStartRecordsItsCertifiedResult) {
+  const Settings settings = Settings::load(default_settings_path());
+  const Scene scene = small_scene();
+  const StartSpec spec = make_start(scene, 1, 0, reduction_settings(settings),
+                                    elastic_settings(settings));
+  nlohmann::json solution;
+  const StartOutcome out = run_start(scene, settings, spec, 0.0, &solution);
+  ASSERT_EQ(out.status, "solved");
+  EXPECT_LE(out.max_violation, 1e-6);
+  EXPECT_LE(out.max_complementarity, 1e-6);
+  EXPECT_EQ(solution["T_f"].get<double>(), out.T_f);
+  const StartOutcome back = StartOutcome::from_json(nlohmann::json::parse(out.to_json().dump()));
+  EXPECT_EQ(back.T_f, out.T_f);  // bit for bit through JSON
+  EXPECT_EQ(back.start, out.start);
+  EXPECT_EQ(back.seed, out.seed);
+}
+
+}  // namespace
+}  // namespace disco
