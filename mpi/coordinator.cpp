@@ -67,7 +67,9 @@ class Search {
  public:
   Search(const SearchPlan& plan, const SearchOptions& options)
       : plan_(plan), options_(options), t0_(Clock::now()), best_(plan.scenes.size()) {
-    std::filesystem::create_directories(std::filesystem::path(options.out) / "best");
+    std::error_code ec;
+    std::filesystem::create_directories(std::filesystem::path(options.out) / "best", ec);
+    if (ec) throw InputError("--out " + options.out + ": cannot create the directory (" + ec.message() + ")");
     const std::string runs = options.out + "/runs.jsonl";
     std::set<std::pair<int, int>> done;
     if (options.resume) done = read_done(runs);

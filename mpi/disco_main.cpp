@@ -69,6 +69,9 @@ int run_search_command(const SearchOptions& o, int threads, int& argc, char**& a
       spdlog::error("internal error on rank {}: {}", rank, e.what());
       code = 1;
     }
+    // An error on one rank must not leave the others waiting for messages
+    // (e.g. rank 0 cannot write --out while the workers wait for tasks).
+    if (code != 0 && code != 3 && size > 1) MPI_Abort(MPI_COMM_WORLD, code);
   }
   MPI_Finalize();
   return code;
