@@ -124,8 +124,9 @@ class Search {
     return std::nullopt;
   }
 
-  void record(const StartOutcome& o, const json* solution) {
+  void record(StartOutcome o, const json* solution) {
     std::lock_guard<std::mutex> lock(mutex_);
+    o.finished_s = seconds();
     const std::string line = o.to_json().dump() + "\n";
     std::fputs(line.c_str(), runs_);
     std::fflush(runs_);

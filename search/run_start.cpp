@@ -35,7 +35,8 @@ json StartOutcome::to_json() const {
           {"time_to_first_feasible", time_to_first_feasible},
           {"time_to_best", time_to_best},
           {"description", description},
-          {"rank", rank}};
+          {"rank", rank},
+          {"finished_s", finished_s}};
 }
 
 StartOutcome StartOutcome::from_json(const json& j) {
@@ -55,6 +56,7 @@ StartOutcome StartOutcome::from_json(const json& j) {
   o.time_to_best = j.value("time_to_best", -1.0);
   o.description = j.value("description", "");
   o.rank = j.value("rank", 0);
+  o.finished_s = j.value("finished_s", -1.0);
   return o;
 }
 

@@ -32,6 +32,7 @@ struct StartOutcome {
   double time_to_first_feasible = -1.0, time_to_best = -1.0;  // s within the start
   std::string description;  // StartSpec::describe()
   int rank = 0;
+  double finished_s = -1.0;  // search time when rank 0 recorded it (set by the coordinator)
   bool solved() const { return status == "solved"; }
 
   nlohmann::json to_json() const;  // one runs.jsonl line (NaN -> null)
