@@ -14,7 +14,8 @@
 //   DIR/runs.jsonl        one line per finished start, written and flushed as
 //                         it arrives (search/run_start.h, StartOutcome);
 //   DIR/best.json         per scene: best certified T_f, its start, starts run
-//                         and solved, search time to first feasible and to best;
+//                         and solved, time to first feasible and to best (from
+//                         the hand-out of the scene's first start);
 //                         whether the time limit cut the search short;
 //   DIR/best/SCENE.json   the full solution of the best start (core/model/solution.h).
 // --resume reads runs.jsonl, skips the starts it holds and rebuilds the best
