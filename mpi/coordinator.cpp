@@ -20,6 +20,7 @@
 
 #include "core/config/settings.h"
 #include "core/config/solver_settings.h"
+#include "core/model/lower_bound.h"
 #include "core/model/solution.h"
 #include "core/util/errors.h"
 #include "search/run_start.h"
@@ -167,6 +168,7 @@ class Search {
     int run = 0, solved = 0;
     double first_feasible_s = -1.0, best_s = -1.0;
     double started_s = -1.0;    // search time its first start was handed out
+    double last_s = -1.0;       // search time its last start was recorded
     bool time_limited = false;  // its own time limit stopped it
   };
 
@@ -205,6 +207,7 @@ class Search {
     if (s < 0) return false;
     Best& b = best_[s];
     ++b.run;
+    b.last_s = seconds();
     if (!o.solved()) return false;
     ++b.solved;
     // Scene times count from the hand-out of the scene's first start.
@@ -253,8 +256,14 @@ class Search {
                 {"starts_solved", b.solved},
                 {"time_to_first_feasible_s", b.first_feasible_s >= 0 ? json(b.first_feasible_s) : json(nullptr)},
                 {"time_to_best_s", b.best_s >= 0 ? json(b.best_s) : json(nullptr)},
+                {"started_s", b.started_s >= 0 ? json(b.started_s) : json(nullptr)},
+                {"wall_s", b.started_s >= 0 ? json(b.last_s - b.started_s) : json(nullptr)},
                 {"time_limit_s", plan_.scenes[s].time_limit},
                 {"time_limit_reached", b.time_limited}};
+      const Scene& scene = plan_.scenes[s].scene;
+      const auto lb = scene_lower_bound(scene), ref = scene_reference_time(scene);
+      j["lower_bound"] = lb && std::isfinite(*lb) ? json(*lb) : json(nullptr);
+      j["reference_time"] = ref ? json(*ref) : json(nullptr);
       if (b.start >= 0) {
         j["T_f"] = b.T_f;
         j["start"] = b.start;
