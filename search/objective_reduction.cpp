@@ -3,12 +3,17 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "core/util/check.h"
 #include "core/util/errors.h"
 #include "core/util/numbers.h"
 
 namespace disco {
+namespace {
+// A minimising step's T_f this far (relative) below its bound left the bound inactive.
+constexpr double kInsideBound = 1e-6;
+}  // namespace
 
 ReductionSettings reduction_settings(const Settings& s) {
   ReductionSettings r;
@@ -97,10 +102,32 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
   }
 
   // 2. Inexact objective reduction.
+  // Minimise T_f <= T_best from the best point (steps 2 and 3 below); true if
+  // the solve converged (certified), i.e. the best point is now a local optimum.
+  auto minimize = [&] {
+    problem.limit_horizon(out.T_best);
+    MpccResult r = solver.solve(problem.program(), out.best);
+    const double T_f = problem.horizon(r.z);
+    const bool improved = r.solved() && T_f < out.T_best;
+    record("minimize", out.T_best, r, improved);
+    if (improved) {
+      out.best = std::move(r);
+      out.T_best = T_f;
+      out.time_to_best = elapsed();
+      return true;
+    }
+    return r.solved();
+  };
   double rate = cfg.rate;
   bool fixed_steps = false;
-  for (int k = 0; k < cfg.max_solves && rate >= cfg.min_rate; ++k) {
+  bool at_local_optimum = false, minimized = false;
+  const std::optional<double> lower_bound = problem.lower_bound();
+  for (int k = 0; k < cfg.max_solves; ++k) {
     if (cfg.time_limit > 0 && elapsed() > cfg.time_limit) break;
+    // Never ask for less than a valid lower bound: such a step cannot succeed.
+    while (lower_bound && rate >= cfg.min_rate && (1.0 - rate) * out.T_best < *lower_bound)
+      rate *= cfg.shrink;
+    if (rate < cfg.min_rate) break;
     const double bound = (1.0 - rate) * out.T_best;
     if (fixed_steps) {
       problem.fix_horizon(bound);
@@ -121,25 +148,30 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
       out.best = std::move(r);
       out.T_best = T_f;
       out.time_to_best = elapsed();
+      // A minimising step that converged strictly inside its bound is at a
+      // local optimum: further steps only probe the homotopy and fail.
+      if (!fixed_steps && T_f < bound * (1.0 - kInsideBound)) {
+        at_local_optimum = true;
+        break;
+      }
       rate *= cfg.grow;
       rate = std::min(rate, 0.5);
-    } else {
-      rate *= cfg.shrink;
+      continue;
+    }
+    rate *= cfg.shrink;
+    // The first fixed step that fails: the homotopy has passed the local
+    // optimum's horizon, so minimise from the best point now (step 3 early).
+    if (fixed_steps && !minimized && !(cfg.time_limit > 0 && elapsed() > cfg.time_limit)) {
+      minimized = true;
+      if (minimize()) {
+        at_local_optimum = true;
+        break;
+      }
     }
   }
   // 3. From the last homotopy step to the local optimum.
-  if (fixed_steps && !(cfg.time_limit > 0 && elapsed() > cfg.time_limit)) {
-    problem.limit_horizon(out.T_best);
-    MpccResult r = solver.solve(problem.program(), out.best);
-    const double T_f = problem.horizon(r.z);
-    const bool improved = r.solved() && T_f < out.T_best;
-    record("minimize", out.T_best, r, improved);
-    if (improved) {
-      out.best = std::move(r);
-      out.T_best = T_f;
-      out.time_to_best = elapsed();
-    }
-  }
+  if (fixed_steps && !at_local_optimum && !(cfg.time_limit > 0 && elapsed() > cfg.time_limit))
+    minimize();
   // Free the horizon again: the problem is the model itself for later users.
   problem.limit_horizon(kInf);
   out.status = MpccStatus::kSolved;

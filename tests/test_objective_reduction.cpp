@@ -1,8 +1,9 @@
-// The objective reduction's perturbation hook (search/objective_reduction.h,
-// step 1b): a perturbed feasible start reaches a certified solution and
+// The objective reduction (search/objective_reduction.h). Its perturbation
+// hook (step 1b): a perturbed feasible start reaches a certified solution and
 // records its extra solve; a perturbation that cannot be certified leaves the
 // reduction exactly as without one; start 0 of the search is bit-identical to
-// `disco solve`.
+// `disco solve`. Its schedule: no step is asked below a valid lower bound, and
+// the loop ends at a converged minimisation (a local optimum).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -131,6 +132,62 @@ TEST(ObjectiveReduction, StartZeroIsBitIdenticalToDiscoSolve) {
   EXPECT_TRUE(same_bits(outcome.T_f, solve.T_f())) << outcome.T_f << " vs " << solve.T_f();
   EXPECT_EQ(outcome.iterations, solve.result.iterations);
   EXPECT_EQ(outcome.nlp_solves, solve.result.nlp_solves);
+}
+
+// Runs the settings file's schedule (first rate `rate` if > 0) on `problem`
+// from the straight-line guess.
+ReductionResult reduce_plainly(RobotProblem& problem, double rate = 0.0) {
+  const Settings settings = Settings::load(default_settings_path());
+  IpoptSolver ipopt(ipopt_options(settings));
+  ElasticSolver solver(ipopt, elastic_settings(settings));
+  ReductionSettings schedule = reduction_settings(settings);
+  if (rate > 0) schedule.rate = rate;
+  return reduce_objective(problem, solver, schedule);
+}
+
+void print(const ReductionResult& result) {
+  for (const SolveRecord& r : result.solves)
+    std::printf("  %-22s bound %.6f T_f %.6f %s%s\n", r.phase.c_str(), r.bound, r.T_f,
+                to_string(r.status).c_str(), r.improved ? " *" : "");
+}
+
+TEST(ObjectiveReduction, NoStepIsAskedBelowTheLowerBound) {
+  // Alone, the diagonal robot cannot beat its closed-form time: every step
+  // below it would be a wasted solve. A first rate of 0.45 would ask for
+  // 0.55 x 1.5 = 0.83 times that time.
+  const Scene scene = scenario("one_robot_diagonal", {"steps=30"});
+  RobotProblem problem(scene);
+  const double lower_bound = problem.lower_bound().value();
+  const ReductionResult result = reduce_plainly(problem, 0.45);
+  print(result);
+  ASSERT_TRUE(result.found);
+  EXPECT_GE(result.T_best, lower_bound);
+  EXPECT_LE(result.T_best, lower_bound * (1 + 1e-2));
+  for (const SolveRecord& r : result.solves) EXPECT_GE(r.bound, lower_bound) << r.phase;
+}
+
+TEST(ObjectiveReduction, TheLoopEndsAtAConvergedMinimisation) {
+  // A minimising step that converges strictly inside its bound, or a
+  // `minimize` phase that converges, is a local optimum: nothing follows it.
+  for (const char* name : {"one_robot_axis", "two_robots_swap_avoid"}) {
+    const Scene scene = scenario(name, {"steps=20"});
+    RobotProblem problem(scene);
+    const ReductionResult result = reduce_plainly(problem);
+    std::printf("%s\n", name);
+    print(result);
+    ASSERT_TRUE(result.found) << name;
+    bool ended = false;
+    for (size_t k = 0; k < result.solves.size(); ++k) {
+      const SolveRecord& r = result.solves[k];
+      const bool converged = r.status == MpccStatus::kSolved;
+      if ((r.phase == "reduction" && converged && r.T_f < r.bound * (1 - 1e-6)) ||
+          (r.phase == "minimize" && converged)) {
+        EXPECT_EQ(k + 1, result.solves.size()) << name << ": solves after a local optimum";
+        ended = true;
+      }
+    }
+    EXPECT_TRUE(ended) << name << ": the loop did not end at a local optimum";
+  }
 }
 
 }  // namespace
