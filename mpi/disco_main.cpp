@@ -1,6 +1,7 @@
 // disco — the command-line tool.
 //
-//   disco solve SCENE.yaml [--out DIR] [--threads N] [--settings FILE] [--set KEY=VALUE ...]
+//   disco solve SCENE.yaml [--out DIR] [--start N [--seed S]] [--threads N] [--settings FILE]
+//               [--set KEY=VALUE ...]
 //   disco search CONFIG... [--starts N] [--seed S] [--time-limit SEC] [--out DIR] [--resume]
 //                [--threads N] [--settings FILE] [--set KEY=VALUE ...]   (mpi/coordinator.h)
 //
@@ -31,6 +32,7 @@
 #include "core/util/errors.h"
 #include "mpi/coordinator.h"
 #include "search/solve_scene.h"
+#include "search/start.h"
 
 namespace {
 
@@ -82,6 +84,8 @@ struct SolveOptions {
   std::string out;
   std::string settings = default_settings_path();
   int threads = 0;
+  int start = 0;
+  std::uint64_t seed = 1;
   std::vector<std::string> sets;
 };
 
@@ -121,7 +125,10 @@ int run_solve(const SolveOptions& o) {
                  : r.status == MpccStatus::kFailed ? "  (Ipopt: " + ipopt_status_name(r.ipopt_status) + ")"
                                                      : std::string());
   };
-  const SceneSolve run = solve_scene(scene, settings, on_solve);
+  const StartSpec start =
+      make_start(scene, o.seed, o.start, reduction_settings(settings), elastic_settings(settings));
+  if (o.start != 0) spdlog::info("seed {}, {}", o.seed, start.describe());
+  const SceneSolve run = solve_scene(scene, settings, start, 0.0, on_solve);
   const std::string path = out_dir + "/solution.json";
   write_json_file(path, solution_json(*run.problem, run.z, run.info));
   const auto lb = run.problem->lower_bound();
@@ -153,6 +160,11 @@ int main(int argc, char** argv) {
   auto* cmd = app.add_subcommand("solve", "Solve one scene from one start (objective reduction)");
   cmd->add_option("scene", solve.scene, "Scene file (YAML)")->required();
   cmd->add_option("--out", solve.out, "Output directory (default: out/SCENARIO)");
+  cmd->add_option("--start", solve.start,
+                  "Run this start of a search (search/start.h) instead of start 0, e.g. to see the "
+                  "log of the start that gave a search's best")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--seed", solve.seed, "Seed of the start generator (with --start; as for search)");
   cmd->add_option("--threads", solve.threads, "OpenMP threads (default: OMP_NUM_THREADS, else 1)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--settings", solve.settings, "Solver settings file")

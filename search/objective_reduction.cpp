@@ -51,6 +51,15 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
   const auto t0 = Clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - t0).count(); };
   ReductionResult out;
+  // Every elastic solve gets at most the time left (and its own limit, if smaller).
+  const double own_wall_limit = solver.settings().wall_limit_s;
+  auto solve = [&](const auto& start) {
+    if (cfg.time_limit > 0) {
+      const double left = std::max(cfg.time_limit - elapsed(), 1e-3);
+      solver.set_wall_limit(own_wall_limit > 0 ? std::min(own_wall_limit, left) : left);
+    }
+    return solver.solve(problem.program(), start);
+  };
   auto record = [&](const std::string& phase, double bound, const MpccResult& r, bool improved) {
     SolveRecord rec{phase, bound, problem.horizon(r.z), r.status, r.ipopt_status, r.certificate,
                     r.nlp_solves, r.iterations, r.seconds, improved};
@@ -67,7 +76,7 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
   for (int attempt = 0; attempt < 3 && !out.found; ++attempt, T *= 2.0) {
     problem.fix_horizon(T);
     const Vector z0 = guess ? guess(T) : problem.straight_line_guess(T);
-    MpccResult r = solver.solve(problem.program(), z0);
+    MpccResult r = solve(z0);
     out.feasibility_detail = to_string(r.status);
     out.status = r.status == MpccStatus::kElasticNotTight ? MpccStatus::kInfeasible : r.status;
     const bool ok = r.solved();
@@ -91,7 +100,7 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
     DISCO_CHECK(p.seconds > 0.0, "a perturbation's horizon is positive");
     DISCO_CHECK(p.guess.size() == out.best.z.size(), "a perturbation's guess is a model point");
     problem.fix_horizon(p.seconds);
-    MpccResult r = solver.solve(problem.program(), p.guess);
+    MpccResult r = solve(p.guess);
     const bool ok = r.solved();
     record("perturbed feasibility", p.seconds, r, ok);
     if (ok) {
@@ -106,7 +115,7 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
   // the solve converged (certified), i.e. the best point is now a local optimum.
   auto minimize = [&] {
     problem.limit_horizon(out.T_best);
-    MpccResult r = solver.solve(problem.program(), out.best);
+    MpccResult r = solve(out.best);
     const double T_f = problem.horizon(r.z);
     const bool improved = r.solved() && T_f < out.T_best;
     record("minimize", out.T_best, r, improved);
@@ -120,10 +129,12 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
   };
   double rate = cfg.rate;
   bool fixed_steps = false;
-  bool at_local_optimum = false, minimized = false;
+  bool at_local_optimum = false;  // the best point is a converged minimisation's
+  bool minimized = false;         // minimised since the last improving fixed step
   const std::optional<double> lower_bound = problem.lower_bound();
+  auto out_of_time = [&] { return cfg.time_limit > 0 && elapsed() > cfg.time_limit; };
   for (int k = 0; k < cfg.max_solves; ++k) {
-    if (cfg.time_limit > 0 && elapsed() > cfg.time_limit) break;
+    if (out_of_time()) break;
     // Never ask for less than a valid lower bound: such a step cannot succeed.
     while (lower_bound && rate >= cfg.min_rate && (1.0 - rate) * out.T_best < *lower_bound)
       rate *= cfg.shrink;
@@ -135,7 +146,7 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
       problem.limit_horizon(bound);
       solver.set_iteration_limit(cfg.step_iterations);
     }
-    MpccResult r = solver.solve(problem.program(), out.best);
+    MpccResult r = solve(out.best);
     solver.set_iteration_limit(0);
     const double T_f = problem.horizon(r.z);
     const bool improved = r.solved() && T_f < out.T_best;
@@ -148,30 +159,27 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
       out.best = std::move(r);
       out.T_best = T_f;
       out.time_to_best = elapsed();
-      // A minimising step that converged strictly inside its bound is at a
-      // local optimum: further steps only probe the homotopy and fail.
-      if (!fixed_steps && T_f < bound * (1.0 - kInsideBound)) {
-        at_local_optimum = true;
-        break;
-      }
-      rate *= cfg.grow;
-      rate = std::min(rate, 0.5);
+      rate = std::min(rate * cfg.grow, 0.5);
+      // A minimising step that converged strictly inside its bound is a local
+      // optimum: probe below it with fixed steps (the next one that fails ends
+      // the loop). An improving fixed step leaves the old optimum behind.
+      at_local_optimum = !fixed_steps && T_f < bound * (1.0 - kInsideBound);
+      if (at_local_optimum) fixed_steps = true;
+      minimized = at_local_optimum;
       continue;
     }
     rate *= cfg.shrink;
+    if (at_local_optimum) break;  // the probe below a local optimum failed
     // The first fixed step that fails: the homotopy has passed the local
     // optimum's horizon, so minimise from the best point now (step 3 early).
-    if (fixed_steps && !minimized && !(cfg.time_limit > 0 && elapsed() > cfg.time_limit)) {
+    if (fixed_steps && !minimized && !out_of_time()) {
       minimized = true;
-      if (minimize()) {
-        at_local_optimum = true;
-        break;
-      }
+      at_local_optimum = minimize();
     }
   }
   // 3. From the last homotopy step to the local optimum.
-  if (fixed_steps && !at_local_optimum && !(cfg.time_limit > 0 && elapsed() > cfg.time_limit))
-    minimize();
+  if (fixed_steps && !minimized && !out_of_time()) minimize();
+  solver.set_wall_limit(own_wall_limit);
   // Free the horizon again: the problem is the model itself for later users.
   problem.limit_horizon(kInf);
   out.status = MpccStatus::kSolved;

@@ -17,20 +17,24 @@
 //      the best and r *= grow (at most 0.5); anything else r *= shrink. A step
 //      whose bound lies below a valid lower bound (RobotProblem::lower_bound)
 //      cannot succeed and is not tried: r shrinks instead. Stop when
-//      r < min_rate, after max_solves reduction solves, at the time limit, or
-//      at a local optimum. Steps first minimise T_f under the bound with at
-//      most step_iterations Ipopt iterations; one that converges strictly
-//      inside its bound is a local optimum (stop). The first time such a step
-//      does not converge, the loop switches for good to fixed steps that solve
-//      at exactly T_f = (1 - r) T_best, a homotopy in the horizon. Measured on
+//      r < min_rate, after max_solves reduction solves or at the time limit.
+//      Steps first minimise T_f under the bound with at most step_iterations
+//      Ipopt iterations. The first time such a step does not converge, the
+//      loop switches for good to fixed steps that solve at exactly
+//      T_f = (1 - r) T_best, a homotopy in the horizon. Measured on
 //      three_robots_contact: minimising inside the step stalled for 3000
 //      iterations, fixed steps took 35-74 each.
 //   3. Minimise T_f <= T_best from the best point, to land on the local
 //      optimum rather than on a step of the homotopy: right after the first
-//      fixed step that fails (the homotopy has passed the optimum's horizon;
-//      if this converges, stop), else once the fixed steps end. Measured on
-//      paper A3 (start 0): 935 iterations before this order, 436 after, the
-//      same optimum; B2: 2263 and 1177.
+//      fixed step that fails (the homotopy has passed the optimum's horizon),
+//      else once the loop ends.
+//   A local optimum (a minimisation that converged: step 3, or a minimising
+//   step strictly inside its bound) is not the end: the loop probes below it
+//   with a fixed step, as the paper's reduction does, and stops when that
+//   fails; a probe that succeeds continues the homotopy from there.
+//   Measured on paper A3 (start 0): 935 iterations with the minimisation only
+//   at the end, 436 with it after the first failure, the same optimum; B2:
+//   2263 and 1177.
 // Only certified (kSolved) points ever become the best. If no horizon gives
 // one, the scene is reported kInfeasible: Ipopt found the elastic NLP locally
 // infeasible, or complementarity could not be made tight (the elastic mode

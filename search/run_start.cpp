@@ -4,8 +4,8 @@
 #include <cmath>
 #include <exception>
 
-#include "core/config/solver_settings.h"
 #include "core/model/solution.h"
+#include "search/solve_scene.h"
 
 namespace disco {
 namespace {
@@ -69,31 +69,14 @@ StartOutcome run_start(const Scene& scene, const Settings& settings, const Start
   out.seed = start.seed;
   out.description = start.describe();
   try {
-    IpoptSolver ipopt(ipopt_options(settings));
-    ElasticSettings elastic = start.elastic;
-    ReductionSettings schedule = start.schedule;
-    if (time_budget_s > 0) {
-      elastic.wall_limit_s = time_budget_s;
-      schedule.time_limit = time_budget_s;
-    }
-    ElasticSolver solver(ipopt, elastic);
-    RobotProblem problem(scene);
-    const ReductionResult r = reduce_objective(
-        problem, solver, schedule, [&](double T) { return make_guess(problem, start, T); }, {},
-        make_perturbation(problem, start));
-    out.status = to_string(r.status);
+    SceneSolve run = solve_scene(scene, settings, start, time_budget_s);
+    const ReductionResult& r = run.result;
+    out.status = run.info.status;
     out.nlp_solves = r.nlp_solves;
     out.iterations = r.iterations;
     out.time_to_first_feasible = r.time_to_first_feasible;
     out.time_to_best = r.time_to_best;
-    SolutionInfo info;
-    info.status = out.status;
-    info.nlp_solves = r.nlp_solves;
-    info.iterations = r.iterations;
-    Vector z;
     if (r.found) {
-      z = r.best.z;
-      info.certificate = certify(problem.program(), z);
       out.T_f = r.T_best;
     } else {
       out.detail = r.feasibility_detail;
@@ -101,15 +84,12 @@ StartOutcome run_start(const Scene& scene, const Settings& settings, const Start
     if (time_budget_s > 0 && r.seconds >= time_budget_s) {
       out.detail += std::string(out.detail.empty() ? "" : "; ") + "time budget reached";
     }
-    if (!r.found) {
-      info.detail = out.detail;
-      if (!r.solves.empty()) info.certificate = r.solves.back().certificate;
-    }
-    out.max_violation = info.certificate.max_violation;
-    out.max_complementarity = info.certificate.max_complementarity;
+    if (!r.found) run.info.detail = out.detail;
+    out.max_violation = run.info.certificate.max_violation;
+    out.max_complementarity = run.info.certificate.max_complementarity;
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    info.wall_s = out.seconds;
-    if (solution != nullptr) *solution = solution_json(problem, z, info);
+    run.info.wall_s = out.seconds;
+    if (solution != nullptr) *solution = solution_json(*run.problem, run.z, run.info);
   } catch (const std::exception& e) {
     out.status = "error";
     out.detail = e.what();

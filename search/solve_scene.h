@@ -1,7 +1,9 @@
 // disco — everything `disco solve` does between reading its inputs and
 // writing solution.json: build the model of a scene, make the solvers from
-// the settings, run the objective reduction from the straight-line start, and
-// certify the best point on the model itself.
+// the settings, run the objective reduction from one start (by default start
+// 0: the straight-line guess and the settings file's schedule), and certify
+// the best point on the model itself. A search's starts run through the same
+// function (search/run_start.h).
 #pragma once
 
 #include <memory>
@@ -10,6 +12,7 @@
 #include "core/model/robot_problem.h"
 #include "core/model/solution.h"
 #include "search/objective_reduction.h"
+#include "search/start.h"
 
 namespace disco {
 
@@ -22,7 +25,12 @@ struct SceneSolve {
   double T_f() const { return result.T_best; }
 };
 
+// Runs `start` (make_start) on `scene`. A time budget > 0 caps the whole
+// objective reduction and every elastic solve inside it.
 // Throws InputError for bad settings (Ipopt options, elastic or reduction keys).
+SceneSolve solve_scene(const Scene& scene, const Settings& settings, const StartSpec& start,
+                       double time_budget_s = 0.0, const SolveCallback& on_solve = {});
+// Start 0, no budget.
 SceneSolve solve_scene(const Scene& scene, const Settings& settings,
                        const SolveCallback& on_solve = {});
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "core/config/settings.h"
@@ -51,6 +52,26 @@ TEST(RunStart, ASolvedStartRecordsItsCertifiedResult) {
   EXPECT_EQ(back.T_f, out.T_f);  // bit for bit through JSON
   EXPECT_EQ(back.start, out.start);
   EXPECT_EQ(back.seed, out.seed);
+}
+
+TEST(RunStart, ATimeBudgetCapsTheWholeStart) {
+  // A start of three_robots_contact runs for tens of seconds unbounded. With a
+  // budget, every elastic solve gets only the time left of the whole start, so
+  // the start ends within the budget plus about one Ipopt iteration (a
+  // generous second here, for a loaded machine) and keeps its best point.
+  const Settings settings = Settings::load(default_settings_path());
+  const Scene scene =
+      load_scene(std::string(DISCO_SOURCE_DIR) + "/configs/scenarios/three_robots_contact.yaml");
+  const StartSpec spec = make_start(scene, 1, 0, reduction_settings(settings),
+                                    elastic_settings(settings));
+  for (double budget : {3.0, 7.0}) {
+    const StartOutcome out = run_start(scene, settings, spec, budget);
+    std::printf("budget %.0f s: %s T_f %.4f in %.2f s (%s)\n", budget, out.status.c_str(), out.T_f,
+                out.seconds, out.detail.c_str());
+    EXPECT_LE(out.seconds, budget + 1.0) << out.detail;
+    EXPECT_NE(out.detail.find("time budget reached"), std::string::npos) << out.detail;
+    if (out.solved()) EXPECT_LE(out.max_complementarity, 1e-6);
+  }
 }
 
 }  // namespace

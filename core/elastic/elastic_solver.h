@@ -81,6 +81,7 @@ class ElasticSolver {
       : ipopt_(ipopt), settings_(settings) {}
   const ElasticSettings& settings() const { return settings_; }
   void set_iteration_limit(int n) { settings_.iteration_limit = n; }
+  void set_wall_limit(double seconds) { settings_.wall_limit_s = seconds; }  // 0 = none
 
   // From an MPCC point z0.
   MpccResult solve(const Mpcc& mpcc, const ConstVectorRef& z0);
