@@ -9,23 +9,27 @@
 #include <vector>
 
 #include "core/util/check.h"
+#include "core/util/numbers.h"
 
 // How the starts are made.
 //
 // Parameters. Start `index` >= 1 draws, in this fixed order, from a
 // std::mt19937_64 (fully specified by the standard) seeded with FNV-1a over
 // (seed, scene name, index, stream 0): horizon_factor, rate, grow, shrink,
-// perturbation, zeta, min_rate, T_scale (the last two were added later, after
-// the others, so that those keep their values). Uniform reals are made here
+// perturbation, zeta, min_rate, T_scale, margin (the last three were added
+// later, after the others, so that those keep their values). Uniform reals are made here
 // from the generator's bits (std::uniform_real_distribution is
 // implementation-defined), so a start is the same with any standard library.
 // Every draw is made whatever the kind, so the kind never shifts the other
 // parameters.
 //
-// Kinds. (index - 1) % 4 = 0: perturbed, 1: detour left, 2: detour right,
-// 3: perturbed feasible. A detour needs a conflicting pair (below); without
-// one, slots 1 and 2 become perturbed feasible and perturbed, so the kinds
-// alternate.
+// Kinds. With a conflicting pair (below), (index - 1) % 5 = 0: detour left,
+// 1: detour right, 2: yield, 3: perturbed, 4: perturbed feasible (detours
+// first: on the paper's A3/A4 they reached the best optima, perturbed starts
+// rarely did; under a time budget the first starts are the ones that run).
+// Without one (detours and yields would be the straight guess), perturbed and
+// perturbed feasible alternate: (index - 1) % 2 = 0: perturbed, 1: perturbed
+// feasible.
 //
 // Paths. Every guess is a set of position paths, completed into a full model
 // point by RobotProblem::guess_from_paths. The straight path of a robot goes
@@ -55,6 +59,16 @@
 // p sum_k c_k sin(k pi tau) / (k pi), k = 1..2, c_k in [-1, 1], along the path
 // (w(s(tau)) replaces w(tau)), monotone since s' >= 1 - 2 p > 0 for p < 0.5.
 // The shape's random numbers come from stream 1 of the start's generator.
+//
+// Yield. Prioritised planning with waits: the robots, in a random order
+// (Fisher-Yates on stream 1), each keep their straight path and smoothstep
+// timing but wait at the start for a fraction d of the horizon, then move on
+// w((tau - d) / (1 - d)). Each robot takes the smallest d in 0, 0.01, ..., 0.6
+// for which its centre distance to every robot placed before it, over 8 N
+// samples of tau, stays at least `margin` (drawn in [1, 1.5]) times the pair's
+// clearance; if none does, the d with the largest smallest distance. So at a
+// crossing one robot goes first and the other waits for it, the class of
+// solution a straight or detour guess rarely reaches.
 //
 // Perturbed feasible. The guess is the straight one; the perturbation (step
 // 1b of objective_reduction.h) takes each robot's path from the feasible
@@ -214,6 +228,54 @@ Paths detour_paths(const Scene& scene, int side) {
   return build_paths(scene, straight, offset);
 }
 
+Paths yield_paths(const Scene& scene, const StartSpec& start) {
+  const int N = scene.steps, nr = static_cast<int>(scene.robots.size());
+  std::mt19937_64 g = generator(start.seed, scene.name, start.index, 1);
+  std::vector<int> order(nr);
+  for (int i = 0; i < nr; ++i) order[i] = i;
+  for (int i = nr - 1; i > 0; --i)  // Fisher-Yates with our own uniform draws
+    std::swap(order[i], order[std::min(i, static_cast<int>((i + 1) * uniform01(g)))]);
+  std::vector<double> clearance(nr * nr, -1.0);  // < 0: the pair does not interact
+  for (const Pair& p : scene.pairs)
+    clearance[p.i * nr + p.j] = clearance[p.j * nr + p.i] =
+        scene.robots[p.i].radius + scene.robots[p.j].radius +
+        (p.mode == PairMode::kAvoid ? p.safe_distance : 0.0);
+  std::vector<Move> moves(nr);
+  for (int i = 0; i < nr; ++i) moves[i] = straight_move(scene.robots[i]);
+  std::vector<double> delay(nr, 0.0);
+  auto at = [&](int i, double d, double tau, int c) {
+    const double w = smoothstep(std::clamp((tau - d) / (1.0 - d), 0.0, 1.0));
+    return moves[i].from[c] + w * (moves[i].to[c] - moves[i].from[c]);
+  };
+  const int samples = 8 * N;
+  for (int k = 0; k < nr; ++k) {
+    const int i = order[k];
+    double best_d = 0.0, best_ratio = -1.0;
+    for (int step = 0; step <= 60; ++step) {
+      const double d = 0.01 * step;
+      double ratio = kInf;  // smallest distance / clearance against the robots placed
+      for (int q = 0; q < k; ++q) {
+        const int j = order[q];
+        if (clearance[i * nr + j] < 0) continue;
+        for (int m = 0; m <= samples; ++m) {
+          const double tau = static_cast<double>(m) / samples;
+          const double dist = std::hypot(at(i, d, tau, kX) - at(j, delay[j], tau, kX),
+                                         at(i, d, tau, kY) - at(j, delay[j], tau, kY));
+          ratio = std::min(ratio, dist / clearance[i * nr + j]);
+        }
+      }
+      if (ratio > best_ratio) best_d = d, best_ratio = ratio;
+      if (ratio >= start.margin) break;
+    }
+    delay[i] = best_d;
+  }
+  auto warp = [&](int robot, double tau) {
+    return std::clamp((tau - delay[robot]) / (1.0 - delay[robot]), 0.0, 1.0);
+  };
+  auto no_offset = [](int, double, double&, double&) {};
+  return build_paths(scene, warp, no_offset);
+}
+
 Paths perturbed_paths(const Scene& scene, const StartSpec& start) {
   const int nr = static_cast<int>(scene.robots.size());
   const double p = start.perturbation;
@@ -299,6 +361,7 @@ std::string to_string(GuessKind kind) {
     case GuessKind::kPerturbed: return "perturbed";
     case GuessKind::kDetour: return "detour";
     case GuessKind::kPerturbedFeasible: return "perturbed feasible";
+    case GuessKind::kYield: return "yield";
   }
   return "unknown";
 }
@@ -313,6 +376,9 @@ std::string StartSpec::describe() const {
     kind += buf;
   } else if (guess == GuessKind::kPerturbedFeasible) {
     std::snprintf(buf, sizeof buf, " %.2f, T x%.2f", perturbation, T_scale);
+    kind += buf;
+  } else if (guess == GuessKind::kYield) {
+    std::snprintf(buf, sizeof buf, " margin %.2f", margin);
     kind += buf;
   }
   char line[256];
@@ -345,18 +411,35 @@ StartSpec make_start(const Scene& scene, std::uint64_t seed, int index,
   // Added after the draws above: those keep their values.
   s.schedule.min_rate = uniform(g, 0.005, 0.02);
   const double T_scale = uniform(g, 0.8, 1.0);
+  const double margin = uniform(g, 1.0, 1.5);
 
-  const int slot = (index - 1) % 4;
-  if ((slot == 1 || slot == 2) && !conflicts(scene).empty()) {
-    s.guess = GuessKind::kDetour;
-    s.detour_side = slot == 1 ? +1 : -1;
-  } else if (slot % 2 == 0) {
-    s.guess = GuessKind::kPerturbed;
-    s.perturbation = perturbation;
+  enum { kPerturbedSlot, kLeft, kRight, kFeasibleSlot, kYieldSlot } slot;
+  if (conflicts(scene).empty()) {
+    slot = (index - 1) % 2 == 0 ? kPerturbedSlot : kFeasibleSlot;
   } else {
-    s.guess = GuessKind::kPerturbedFeasible;
-    s.perturbation = perturbation;
-    s.T_scale = T_scale;
+    static constexpr decltype(slot) kCycle[5] = {kLeft, kRight, kYieldSlot, kPerturbedSlot,
+                                                 kFeasibleSlot};
+    slot = kCycle[(index - 1) % 5];
+  }
+  switch (slot) {
+    case kLeft:
+    case kRight:
+      s.guess = GuessKind::kDetour;
+      s.detour_side = slot == kLeft ? +1 : -1;
+      break;
+    case kPerturbedSlot:
+      s.guess = GuessKind::kPerturbed;
+      s.perturbation = perturbation;
+      break;
+    case kFeasibleSlot:
+      s.guess = GuessKind::kPerturbedFeasible;
+      s.perturbation = perturbation;
+      s.T_scale = T_scale;
+      break;
+    case kYieldSlot:
+      s.guess = GuessKind::kYield;
+      s.margin = margin;
+      break;
   }
   return s;
 }
@@ -369,6 +452,8 @@ Vector make_guess(const RobotProblem& problem, const StartSpec& start, double se
     case GuessKind::kDetour:
       return problem.guess_from_paths(detour_paths(problem.scene(), start.detour_side), seconds);
     case GuessKind::kPerturbedFeasible: return problem.straight_line_guess(seconds);
+    case GuessKind::kYield:
+      return problem.guess_from_paths(yield_paths(problem.scene(), start), seconds);
   }
   return problem.straight_line_guess(seconds);
 }

@@ -31,6 +31,7 @@ enum class GuessKind {
   kPerturbed,  // straight lines with random lateral and along-path perturbations
   kDetour,     // robots whose straight paths cross pass each other on one side
   kPerturbedFeasible,  // straight lines, then the feasible point re-timed and re-solved
+  kYield,      // straight lines; in a random priority order, robots wait until the way is clear
 };
 std::string to_string(GuessKind kind);
 
@@ -41,6 +42,7 @@ struct StartSpec {
   int detour_side = 0;            // kDetour: +1 left, -1 right (per crossing pair, see start.cpp)
   double perturbation = 0.0;      // kPerturbed: relative amplitude; kPerturbedFeasible: of the warp
   double T_scale = 1.0;           // kPerturbedFeasible: re-solve horizon / feasible horizon
+  double margin = 1.0;            // kYield: clearance multiple kept from higher-priority robots
   ReductionSettings schedule;     // feasibility horizon factor, reduction rate, grow, shrink, ...
   ElasticSettings elastic;        // zeta, formulation, ...
   std::string describe() const;   // one line, for runs.jsonl and reports

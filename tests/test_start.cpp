@@ -98,7 +98,7 @@ bool same_elastic(const ElasticSettings& a, const ElasticSettings& b) {
 bool same_spec(const StartSpec& a, const StartSpec& b) {
   return a.index == b.index && a.seed == b.seed && a.guess == b.guess &&
          a.detour_side == b.detour_side && a.perturbation == b.perturbation &&
-         a.T_scale == b.T_scale && same_schedule(a.schedule, b.schedule) && same_elastic(a.elastic, b.elastic);
+         a.T_scale == b.T_scale && a.margin == b.margin && same_schedule(a.schedule, b.schedule) && same_elastic(a.elastic, b.elastic);
 }
 
 bool bitwise_equal(const Vector& a, const Vector& b) {
@@ -154,10 +154,10 @@ TEST(Start, DifferentSeedIndexOrSceneGiveDifferentParameters) {
   const Scene scene = scenario("two_robots_swap_avoid");
   Scene renamed = scene;
   renamed.name = "other_name";
-  const StartSpec a = make_start(scene, 1, 5, base_schedule(), base_elastic());
-  const StartSpec seed = make_start(scene, 2, 5, base_schedule(), base_elastic());
-  const StartSpec index = make_start(scene, 1, 6, base_schedule(), base_elastic());
-  const StartSpec name = make_start(renamed, 1, 5, base_schedule(), base_elastic());
+  const StartSpec a = make_start(scene, 1, 4, base_schedule(), base_elastic());
+  const StartSpec seed = make_start(scene, 2, 4, base_schedule(), base_elastic());
+  const StartSpec index = make_start(scene, 1, 9, base_schedule(), base_elastic());
+  const StartSpec name = make_start(renamed, 1, 4, base_schedule(), base_elastic());
   for (const StartSpec* o : {&seed, &index, &name}) {
     EXPECT_NE(a.schedule.horizon_factor, o->schedule.horizon_factor) << o->describe();
     EXPECT_NE(a.schedule.rate, o->schedule.rate) << o->describe();
@@ -165,7 +165,7 @@ TEST(Start, DifferentSeedIndexOrSceneGiveDifferentParameters) {
     EXPECT_NE(a.schedule.shrink, o->schedule.shrink) << o->describe();
     EXPECT_NE(a.schedule.min_rate, o->schedule.min_rate) << o->describe();
   }
-  // Perturbed guesses of different seeds differ too (start 5 is perturbed).
+  // Perturbed guesses of different seeds differ too (start 4 is perturbed).
   ASSERT_EQ(a.guess, GuessKind::kPerturbed);
   ASSERT_EQ(seed.guess, GuessKind::kPerturbed);
   const RobotProblem rp(scene);
@@ -197,8 +197,9 @@ TEST(Start, IndexZeroIsTheBaseSettingsAndTheStraightGuess) {
 TEST(Start, ParametersStayInTheirRangesAndOtherFieldsAreKept) {
   const Scene scene = scenario("two_robots_swap_avoid");
   std::set<double> zetas;
-  int perturbed = 0, left = 0, right = 0, feasible = 0;
+  int perturbed = 0, left = 0, right = 0, feasible = 0, yield = 0;
   double min_rate_lo = 1.0, min_rate_hi = 0.0, scale_lo = 2.0, scale_hi = 0.0;
+  double margin_lo = 2.0, margin_hi = 0.0;
   for (int index = 1; index <= 200; ++index) {
     const StartSpec s = make_start(scene, 2026, index, base_schedule(), base_elastic());
     SCOPED_TRACE(s.describe());
@@ -230,16 +231,28 @@ TEST(Start, ParametersStayInTheirRangesAndOtherFieldsAreKept) {
     ElasticSettings e = s.elastic;
     e.zeta = base_elastic().zeta;
     EXPECT_TRUE(same_elastic(e, base_elastic()));
-    // The kinds cycle: perturbed, detour left, detour right, perturbed feasible.
-    const int slot = (index - 1) % 4;
-    if (slot == 0) {
+    // The kinds cycle: detour left, detour right, yield, perturbed, perturbed feasible.
+    const int slot = (index - 1) % 5;
+    if (slot != 2) EXPECT_EQ(s.margin, 1.0);
+    if (slot == 2) {
+      EXPECT_EQ(s.guess, GuessKind::kYield);
+      EXPECT_GE(s.margin, 1.0);
+      EXPECT_LE(s.margin, 1.5);
+      margin_lo = std::min(margin_lo, s.margin);
+      margin_hi = std::max(margin_hi, s.margin);
+      EXPECT_EQ(s.perturbation, 0.0);
+      EXPECT_EQ(s.detour_side, 0);
+      EXPECT_EQ(s.T_scale, 1.0);
+      EXPECT_NE(s.describe().find("yield margin"), std::string::npos);
+      ++yield;
+    } else if (slot == 3) {
       EXPECT_EQ(s.guess, GuessKind::kPerturbed);
       EXPECT_GE(s.perturbation, 0.05);
       EXPECT_LE(s.perturbation, 0.3);
       EXPECT_EQ(s.detour_side, 0);
       EXPECT_EQ(s.T_scale, 1.0);
       ++perturbed;
-    } else if (slot == 3) {
+    } else if (slot == 4) {
       EXPECT_EQ(s.guess, GuessKind::kPerturbedFeasible);
       EXPECT_GE(s.perturbation, 0.05);
       EXPECT_LE(s.perturbation, 0.3);
@@ -253,23 +266,26 @@ TEST(Start, ParametersStayInTheirRangesAndOtherFieldsAreKept) {
       ++feasible;
     } else {
       EXPECT_EQ(s.guess, GuessKind::kDetour);
-      EXPECT_EQ(s.detour_side, slot == 1 ? +1 : -1);
+      EXPECT_EQ(s.detour_side, slot == 0 ? +1 : -1);
       EXPECT_EQ(s.perturbation, 0.0);
       EXPECT_EQ(s.T_scale, 1.0);
-      EXPECT_NE(s.describe().find(slot == 1 ? "detour left" : "detour right"), std::string::npos);
-      (slot == 1 ? left : right)++;
+      EXPECT_NE(s.describe().find(slot == 0 ? "detour left" : "detour right"), std::string::npos);
+      (slot == 0 ? left : right)++;
     }
   }
   EXPECT_EQ(zetas.size(), 3u);
-  EXPECT_EQ(perturbed, 50);
-  EXPECT_EQ(feasible, 50);
-  EXPECT_EQ(left, 50);
-  EXPECT_EQ(right, 50);
+  EXPECT_EQ(perturbed, 40);
+  EXPECT_EQ(feasible, 40);
+  EXPECT_EQ(left, 40);
+  EXPECT_EQ(right, 40);
+  EXPECT_EQ(yield, 40);
   // The draws cover their ranges.
   EXPECT_LT(min_rate_lo, 0.007);
   EXPECT_GT(min_rate_hi, 0.018);
   EXPECT_LT(scale_lo, 0.83);
   EXPECT_GT(scale_hi, 0.97);
+  EXPECT_LT(margin_lo, 1.03);
+  EXPECT_GT(margin_hi, 1.47);
 }
 
 TEST(Start, WithoutConflictsPerturbedAndPerturbedFeasibleAlternate) {
@@ -283,11 +299,12 @@ TEST(Start, WithoutConflictsPerturbedAndPerturbedFeasibleAlternate) {
 }
 
 TEST(Start, NewDrawsKeepTheEarlierParameters) {
-  // Start 5 (perturbed) of two_robots_swap_avoid under seed 1, as drawn
-  // before min_rate and T_scale were appended to the stream: unchanged.
+  // Start 5 of two_robots_swap_avoid under seed 1, as drawn before min_rate,
+  // T_scale and margin were appended to the stream: unchanged (it was a
+  // perturbed start then, a perturbed feasible one since the yield kind).
   const StartSpec s = make_start(scenario("two_robots_swap_avoid"), 1, 5, base_schedule(),
                                  base_elastic());
-  EXPECT_EQ(s.guess, GuessKind::kPerturbed);
+  EXPECT_EQ(s.guess, GuessKind::kPerturbedFeasible);
   EXPECT_EQ(s.schedule.horizon_factor, 0x1.0246a53d7bccdp+1);
   EXPECT_EQ(s.schedule.rate, 0x1.766c556b2c01ap-3);
   EXPECT_EQ(s.schedule.grow, 0x1.ee9b7d1398238p+0);
@@ -303,8 +320,8 @@ TEST(Start, DetourOnlyWhenStraightPathsConflict) {
       n += make_start(scene, 5, index, base_schedule(), base_elastic()).guess == GuessKind::kDetour;
     return n;
   };
-  EXPECT_EQ(detours(scenario("two_robots_swap_avoid")), 20);
-  EXPECT_EQ(detours(scenario("three_robots_contact")), 20);
+  EXPECT_EQ(detours(scenario("two_robots_swap_avoid")), 16);
+  EXPECT_EQ(detours(scenario("three_robots_contact")), 16);
   EXPECT_EQ(detours(apart_scene()), 0);
   // Moved 1.02 m apart (> R_i + R_j + d_s = 1.01), the swap no longer conflicts.
   EXPECT_EQ(detours(scenario("two_robots_swap_avoid", {"robots.0.start.y=0.51",
@@ -317,7 +334,42 @@ TEST(Start, DetourOnlyWhenStraightPathsConflict) {
                                                        "robots.0.target.y=0.5",
                                                        "robots.1.start.y=-0.5",
                                                        "robots.1.target.y=-0.5"})),
-            20);
+            16);
+}
+
+TEST(Start, YieldingRobotsWaitUntilTheWayIsClear) {
+  // Paper B1: two robots whose straight diagonals cross at the same time. In a
+  // yield guess one of them waits at its start (it has not moved after the
+  // first step), the other leaves at once, and the pair stays at least
+  // `margin` clearances apart at every step; the ends are the straight ones.
+  const Scene scene = load_scene(std::string(DISCO_SOURCE_DIR) + "/configs/scenarios/paper/B1.yaml");
+  const RobotProblem rp(scene);
+  const double T = 12.0;
+  const Vector straight = rp.straight_line_guess(T);
+  const double clearance = scene.robots[0].radius + scene.robots[1].radius;
+  ASSERT_LT(min_centre_distance(rp, straight, 0, 1), clearance);
+  int waited[2] = {0, 0};
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    const StartSpec s = find_start(scene, GuessKind::kYield, 0, seed);
+    const Vector z = make_guess(rp, s, T);
+    ASSERT_TRUE(all_finite(z));
+    EXPECT_GE(min_centre_distance(rp, z, 0, 1), s.margin * clearance * (1 - 1e-3)) << s.describe();
+    int waiting = 0;
+    for (int i = 0; i < 2; ++i) {
+      const auto start = position(rp, z, i, 0), first = position(rp, z, i, 1);
+      if (std::hypot(first[0] - start[0], first[1] - start[1]) < 1e-12) {
+        ++waiting;
+        ++waited[i];
+      }
+      const auto end = position(rp, z, i, scene.steps), goal = position(rp, straight, i, scene.steps);
+      EXPECT_NEAR(end[0], goal[0], 1e-12);
+      EXPECT_NEAR(end[1], goal[1], 1e-12);
+    }
+    EXPECT_EQ(waiting, 1) << s.describe();
+  }
+  // The random priority order lets each robot go first in some start.
+  EXPECT_GT(waited[0], 0);
+  EXPECT_GT(waited[1], 0);
 }
 
 TEST(Start, DetoursSeparateTheRobotsOnMirrorImageSides) {
