@@ -21,16 +21,11 @@ import subprocess
 import sys
 import time
 
+from script_checks import check, failures, finish
+
 DISCO, MPIEXEC, BENCH, WORK, MODE = sys.argv[1:6]
 MPI = [MPIEXEC, "-np", "2", "--allow-run-as-root", "--oversubscribe"]
 ENV = dict(os.environ, OMP_NUM_THREADS="1")
-failures = []
-
-
-def check(cond, what):
-    print(("ok    " if cond else "FAIL  ") + what)
-    if not cond:
-        failures.append(what)
 
 
 def search(out, ranks, *extra):
@@ -130,5 +125,4 @@ elif MODE == "timelimit":
 else:
     sys.exit(f"unknown mode {MODE}")
 
-print(f"search_tests {MODE}: {len(failures)} failed")
-sys.exit(1 if failures else 0)
+finish(f"search_tests {MODE}")
