@@ -18,6 +18,7 @@
 #include <set>
 #include <thread>
 
+#include "core/util/numbers.h"
 #include "core/config/settings.h"
 #include "core/config/solver_settings.h"
 #include "core/model/lower_bound.h"
@@ -140,11 +141,30 @@ class Search {
     write_best();
     const double elapsed = seconds();
     const int ran_now = finished_ - resumed_;
-    const double eta = ran_now > 0 ? elapsed / ran_now * (total_ - finished_) : 0.0;
+    double eta = ran_now > 0 ? elapsed / ran_now * (total_ - finished_) : 0.0;
+    eta = std::min(eta, time_left(elapsed));
     spdlog::info("[{}/{}] {} start {} (rank {}): {}{} in {:.1f} s | best {} | elapsed {} ETA {}",
                  finished_, total_, o.scene, o.start, o.rank, o.status,
                  o.solved() ? fmt::format(" T_f {:.6f}", o.T_f) : std::string(), o.seconds,
                  best_summary(s), clock_text(elapsed), clock_text(eta));
+  }
+
+  // At most this long until the time limits stop the search: the search's own
+  // limit, and every scene's limit left (scenes taken one after another).
+  double time_left(double elapsed) const {
+    double scenes = 0.0;
+    for (size_t s = 0; s < plan_.scenes.size(); ++s) {
+      const double limit = plan_.scenes[s].time_limit;
+      if (!(limit > 0)) {
+        scenes = kInf;
+        break;
+      }
+      const Best& b = best_[s];
+      scenes += b.started_s < 0 ? limit : std::max(0.0, limit - (elapsed - b.started_s));
+    }
+    const double search =
+        options_.time_limit > 0 ? std::max(0.0, options_.time_limit - elapsed) : kInf;
+    return std::min(scenes, search);
   }
 
   void finish() {
@@ -210,15 +230,19 @@ class Search {
     b.last_s = seconds();
     if (!o.solved()) return false;
     ++b.solved;
-    // Scene times count from the hand-out of the scene's first start.
-    const double since = seconds() - std::max(0.0, b.started_s);
-    if (b.first_feasible_s < 0) b.first_feasible_s = since;
+    // Scene times count from the hand-out of the scene's first start, to the
+    // moment a rank found the point: the start was handed out o.seconds ago
+    // and found it its own time_to_first_feasible / time_to_best after that.
+    const double handed = seconds() - o.seconds - std::max(0.0, b.started_s);
+    const double feasible = handed + std::max(0.0, o.time_to_first_feasible);
+    if (b.first_feasible_s < 0 || feasible < b.first_feasible_s)
+      b.first_feasible_s = std::max(0.0, feasible);
     const bool better = b.start < 0 || o.T_f < b.T_f || (o.T_f == b.T_f && o.start < b.start);
     if (!better) return false;
     b.start = o.start;
     b.T_f = o.T_f;
     b.outcome = o;
-    b.best_s = since;
+    b.best_s = std::max(0.0, handed + std::max(0.0, o.time_to_best));
     return true;
   }
 

@@ -48,7 +48,7 @@ def best(out):
         return json.load(f)
 
 
-def check_consistent(out, label):
+def check_consistent(out, label, timing=False):
     rs, b = runs(out), best(out)
     pairs = [(r["scene"], r["start"]) for r in rs]
     check(len(pairs) == len(set(pairs)), f"{label}: every start recorded once ({len(pairs)} lines)")
@@ -67,12 +67,22 @@ def check_consistent(out, label):
               f"{label}: {scene} solution file matches its best")
         check(sol["certificate"]["max_violation"] <= 1e-6 and sol["certificate"]["max_complementarity"] <= 1e-6,
               f"{label}: {scene} best is certified")
+        # Scene times (of one uninterrupted search): when a rank found the points,
+        # so the first feasible point comes before any start of the scene
+        # finished, and before the best.
+        if not timing:
+            continue
+        ff, tb = s["time_to_first_feasible_s"], s["time_to_best_s"]
+        first_done = min(r["finished_s"] for r in solved) - s["started_s"]
+        check(0 <= ff <= tb <= s["wall_s"] + 1e-3 and ff < first_done,
+              f"{label}: {scene} first feasible {ff:.2f} s <= best {tb:.2f} s <= wall "
+              f"{s['wall_s']:.2f} s, and before the first start finished ({first_done:.2f} s)")
 
 
 if MODE == "mpi2":
     out = os.path.join(WORK, "mpi2")
     check(search(out, 2) == 0, "mpirun -np 2 disco search exits 0")
-    check_consistent(out, "np2")
+    check_consistent(out, "np2", timing=True)
     check(sorted({r["rank"] for r in runs(out)}) == [0, 1], "both ranks ran starts")
 elif MODE == "determinism":
     a, b = os.path.join(WORK, "det1"), os.path.join(WORK, "det2")
