@@ -70,7 +70,9 @@ TEST(RunStart, ATimeBudgetCapsTheWholeStart) {
                 out.seconds, out.detail.c_str());
     EXPECT_LE(out.seconds, budget + 1.0) << out.detail;
     EXPECT_NE(out.detail.find("time budget reached"), std::string::npos) << out.detail;
-    if (out.solved()) EXPECT_LE(out.max_complementarity, 1e-6);
+    if (out.solved()) {
+      EXPECT_LE(out.max_complementarity, 1e-6);
+    }
   }
 }
 
