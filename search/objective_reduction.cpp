@@ -38,6 +38,10 @@ ReductionSettings reduction_settings(const Settings& s) {
   if (r.step_iterations < 1)
     throw InputError(s.where("reduction.step_iterations") +
                      ": key 'reduction.step_iterations': must be >= 1");
+  r.minimize_iterations = s.integer("reduction.minimize_iterations");
+  if (r.minimize_iterations < 0)
+    throw InputError(s.where("reduction.minimize_iterations") +
+                     ": key 'reduction.minimize_iterations': must be >= 0");
   r.time_limit = s.number("reduction.time_limit");
   if (r.time_limit < 0)
     throw InputError(s.where("reduction.time_limit") + ": key 'reduction.time_limit': must be >= 0");
@@ -113,9 +117,11 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
   // 2. Inexact objective reduction.
   // Minimise T_f <= T_best from the best point (steps 2 and 3 below); true if
   // the solve converged (certified), i.e. the best point is now a local optimum.
-  auto minimize = [&] {
+  auto minimize = [&](int iteration_limit) {
     problem.limit_horizon(out.T_best);
+    solver.set_iteration_limit(iteration_limit);
     MpccResult r = solve(out.best);
+    solver.set_iteration_limit(0);
     const double T_f = problem.horizon(r.z);
     const bool improved = r.solved() && T_f < out.T_best;
     record("minimize", out.T_best, r, improved);
@@ -131,6 +137,7 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
   bool fixed_steps = false;
   bool at_local_optimum = false;  // the best point is a converged minimisation's
   bool minimized = false;         // minimised since the last improving fixed step
+  bool cut_short = false;         // an early minimisation hit minimize_iterations
   const std::optional<double> lower_bound = problem.lower_bound();
   auto out_of_time = [&] { return cfg.time_limit > 0 && elapsed() > cfg.time_limit; };
   for (int k = 0; k < cfg.max_solves; ++k) {
@@ -172,13 +179,16 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
     if (at_local_optimum) break;  // the probe below a local optimum failed
     // The first fixed step that fails: the homotopy has passed the local
     // optimum's horizon, so minimise from the best point now (step 3 early).
-    if (fixed_steps && !minimized && !out_of_time()) {
+    // Capped at minimize_iterations: if it does not converge within them, the
+    // fixed steps go on and the loop minimises again at its end.
+    if (fixed_steps && !minimized && !cut_short && !out_of_time()) {
       minimized = true;
-      at_local_optimum = minimize();
+      at_local_optimum = minimize(cfg.minimize_iterations);
+      if (!at_local_optimum && cfg.minimize_iterations > 0) minimized = false, cut_short = true;
     }
   }
   // 3. From the last homotopy step to the local optimum.
-  if (fixed_steps && !minimized && !out_of_time()) minimize();
+  if (fixed_steps && !minimized && !out_of_time()) minimize(0);
   solver.set_wall_limit(own_wall_limit);
   // Free the horizon again: the problem is the model itself for later users.
   problem.limit_horizon(kInf);

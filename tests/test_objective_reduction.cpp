@@ -197,5 +197,34 @@ TEST(ObjectiveReduction, ALocalOptimumEndsTheLoopOnceAProbeBelowItFails) {
   }
 }
 
+TEST(ObjectiveReduction, ACappedEarlyMinimisationHandsBackToTheFixedSteps) {
+  // reduction.minimize_iterations caps the minimisation after the first failed
+  // fixed step; cut short, it leaves the best point as it was, the fixed steps
+  // go on, and the loop minimises again, uncapped, at its end.
+  const Scene scene = scenario("two_robots_swap_avoid", {"steps=20"});
+  const Settings settings = Settings::load(default_settings_path());
+  RobotProblem problem(scene);
+  IpoptSolver ipopt(ipopt_options(settings));
+  ElasticSolver solver(ipopt, elastic_settings(settings));
+  ReductionSettings schedule = reduction_settings(settings);
+  schedule.minimize_iterations = 3;
+  const ReductionResult result = reduce_objective(problem, solver, schedule);
+  print(result);
+  ASSERT_TRUE(result.found);
+  std::vector<size_t> minimizations;
+  for (size_t k = 0; k < result.solves.size(); ++k)
+    if (result.solves[k].phase == "minimize") minimizations.push_back(k);
+  ASSERT_EQ(minimizations.size(), 2u);
+  const SolveRecord& capped = result.solves[minimizations[0]];
+  EXPECT_NE(capped.status, MpccStatus::kSolved);
+  EXPECT_FALSE(capped.improved);
+  EXPECT_LE(capped.iterations, 3 * capped.nlp_solves);
+  EXPECT_EQ(result.solves[minimizations[0] + 1].phase, "fixed step");
+  const SolveRecord& last = result.solves[minimizations[1]];
+  EXPECT_EQ(last.status, MpccStatus::kSolved);
+  EXPECT_GT(last.iterations, 3);
+  EXPECT_EQ(minimizations[1] + 1, result.solves.size());
+}
+
 }  // namespace
 }  // namespace disco

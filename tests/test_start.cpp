@@ -233,7 +233,9 @@ TEST(Start, ParametersStayInTheirRangesAndOtherFieldsAreKept) {
     EXPECT_TRUE(same_elastic(e, base_elastic()));
     // The kinds cycle: detour left, detour right, yield, perturbed, perturbed feasible.
     const int slot = (index - 1) % 5;
-    if (slot != 2) EXPECT_EQ(s.margin, 1.0);
+    if (slot != 2) {
+      EXPECT_EQ(s.margin, 1.0);
+    }
     if (slot == 2) {
       EXPECT_EQ(s.guess, GuessKind::kYield);
       EXPECT_GE(s.margin, 1.0);
