@@ -1,5 +1,6 @@
 #include "search/solve_scene.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "core/config/solver_settings.h"
@@ -10,14 +11,13 @@ SceneSolve solve_scene(const Scene& scene, const Settings& settings, const Start
                        double time_budget_s, const SolveCallback& on_solve) {
   const auto t0 = std::chrono::steady_clock::now();
   IpoptSolver ipopt(ipopt_options(settings));
-  ElasticSettings elastic = start.elastic;
+  // The budget caps the reduction, which gives every elastic solve only the time left.
   ReductionSettings schedule = start.schedule;
   if (time_budget_s > 0) {
-    elastic.wall_limit_s = time_budget_s;
     schedule.time_limit =
         schedule.time_limit > 0 ? std::min(schedule.time_limit, time_budget_s) : time_budget_s;
   }
-  ElasticSolver solver(ipopt, elastic);
+  ElasticSolver solver(ipopt, start.elastic);
 
   SceneSolve out;
   out.problem = std::make_unique<RobotProblem>(scene);

@@ -20,6 +20,7 @@
 #include "core/model/scene_yaml.h"
 #include "search/objective_reduction.h"
 #include "search/start.h"
+#include "test_support_start.h"
 
 namespace disco {
 namespace {
@@ -122,14 +123,8 @@ double min_centre_distance(const RobotProblem& rp, const Vector& z, int i, int j
   return d;
 }
 
-// The first start index >= 1 of the given kind and side.
 StartSpec find_start(const Scene& scene, GuessKind kind, int side = 0, std::uint64_t seed = 7) {
-  for (int k = 1; k < 50; ++k) {
-    StartSpec s = make_start(scene, seed, k, base_schedule(), base_elastic());
-    if (s.guess == kind && s.detour_side == side) return s;
-  }
-  ADD_FAILURE() << "no start of kind " << to_string(kind) << " side " << side;
-  return {};
+  return start_test::first_start_of(scene, seed, kind, side, base_schedule(), base_elastic());
 }
 
 bool all_finite(const Vector& z) { return z.allFinite(); }
@@ -565,11 +560,8 @@ TEST(Start, OtherKindsHaveNoPerturbation) {
 TEST(Start, ReductionFromADetourStartReachesACertifiedSolution) {
   const Scene scene = scenario("two_robots_swap_avoid", {"steps=20"});
   const Settings settings = Settings::load(default_settings_path());
-  StartSpec start;
-  for (int index = 1; index < 20; ++index) {
-    start = make_start(scene, 3, index, reduction_settings(settings), elastic_settings(settings));
-    if (start.guess == GuessKind::kDetour) break;
-  }
+  const StartSpec start = start_test::first_start_of(
+      scene, 3, GuessKind::kDetour, +1, reduction_settings(settings), elastic_settings(settings));
   ASSERT_EQ(start.guess, GuessKind::kDetour);
   std::printf("%s\n", start.describe().c_str());
   RobotProblem problem(scene);
