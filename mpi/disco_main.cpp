@@ -100,13 +100,16 @@ int run_solve(const SolveOptions& o) {
   std::filesystem::create_directories(out_dir);
 
   {
-    const RobotProblem preview(scene);
+    RobotProblem preview(scene, model_options(settings));
+    const double T_max = feasibility_horizon(preview, reduction_settings(settings));
+    preview.set_horizon_max(T_max);
     const auto size = preview.size();
     spdlog::info("scene {} ({}): {} robots, {} pairs, N_t = {}", scene.name, scene.source,
                  scene.robots.size(), scene.pairs.size(), scene.steps);
-    spdlog::info("model: {} variables, {} constraints, {} complementarity pairs; {} threads",
-                 size.variables, size.constraints, size.complementarity_pairs,
-                 omp_get_max_threads());
+    spdlog::info("model{}: {} variables, {} constraints, {} complementarity pairs "
+                 "(T_f <= {:.4g} s); {} threads",
+                 preview.options().adaptive ? " (adaptive)" : "", size.variables, size.constraints,
+                 size.complementarity_pairs, T_max, omp_get_max_threads());
     if (const auto lb = preview.lower_bound(); lb && std::isfinite(*lb)) {
       spdlog::info("lower bound (robots without contact partners, each alone): {:.6f} s", *lb);
     } else {

@@ -48,6 +48,11 @@ ReductionSettings reduction_settings(const Settings& s) {
   return r;
 }
 
+double feasibility_horizon(const RobotProblem& problem, const ReductionSettings& cfg) {
+  const auto scale = problem.reference_time();
+  return scale ? std::max(cfg.horizon_min, cfg.horizon_factor * *scale) : cfg.horizon_min;
+}
+
 ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
                                  const ReductionSettings& cfg, const GuessFunction& guess,
                                  const SolveCallback& on_solve, const PerturbFunction& perturb) {
@@ -74,10 +79,9 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
   };
 
   // 1. Feasibility at a fixed, generous horizon.
-  const auto scale = problem.reference_time();
-  double T = cfg.horizon_min;
-  if (scale) T = std::max(T, cfg.horizon_factor * *scale);
+  double T = feasibility_horizon(problem, cfg);
   for (int attempt = 0; attempt < 3 && !out.found; ++attempt, T *= 2.0) {
+    problem.set_horizon_max(T);
     problem.fix_horizon(T);
     const Vector z0 = guess ? guess(T) : problem.straight_line_guess(T);
     MpccResult r = solve(z0);
@@ -101,7 +105,8 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
   // 1b. Once more from a perturbation of the feasible point, if asked.
   if (perturb && !(cfg.time_limit > 0 && elapsed() > cfg.time_limit)) {
     const Perturbation p = perturb(out.best.z);
-    DISCO_CHECK(p.seconds > 0.0, "a perturbation's horizon is positive");
+    DISCO_CHECK(p.seconds > 0.0 && p.seconds <= out.T_best,
+                "a perturbation's horizon is positive and at most the feasible one");
     DISCO_CHECK(p.guess.size() == out.best.z.size(), "a perturbation's guess is a model point");
     problem.fix_horizon(p.seconds);
     MpccResult r = solve(p.guess);

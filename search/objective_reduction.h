@@ -4,7 +4,10 @@
 //   1. Feasibility: fix T_f = max(horizon_min, horizon_factor * reference
 //      time: the slowest robot's straight move alone) and solve
 //      the elastic MPCC from the guess (the objective is then constant). If it
-//      is not solved, double T_f and try again (three times at most).
+//      is not solved, double T_f and try again (three times at most). This
+//      horizon is the largest any later step asks for, so each attempt first
+//      sets the model's T_max to it (RobotProblem::set_horizon_max: the
+//      adaptive model builds what the scene needs up to that horizon).
 //   1b. Optional perturbation (a PerturbFunction, below): called once with the
 //      certified feasible point, it returns another guess and a fixed horizon;
 //      the elastic MPCC is solved there once more, from that guess (a cold
@@ -94,6 +97,9 @@ struct ReductionResult {
   double time_to_best = -1.0;
 };
 
+// The first feasibility horizon (step 1) for `problem`, in seconds.
+double feasibility_horizon(const RobotProblem& problem, const ReductionSettings& settings);
+
 using SolveCallback = std::function<void(const SolveRecord&)>;
 // The initial guess for a feasibility horizon of `seconds` (model-unit z).
 using GuessFunction = std::function<Vector(double seconds)>;
@@ -103,7 +109,8 @@ struct Perturbation {
   Vector guess;          // model-unit z, the size of the program's variables
   double seconds = 0.0;  // > 0
 };
-// Called once with the certified feasible point of step 1 (model-unit z).
+// Called once with the certified feasible point of step 1 (model-unit z); the
+// horizon must not exceed the feasible point's.
 using PerturbFunction = std::function<Perturbation(const Vector& feasible)>;
 
 // `guess` defaults to RobotProblem::straight_line_guess; without `perturb`,

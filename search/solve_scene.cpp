@@ -7,6 +7,25 @@
 
 namespace disco {
 
+namespace {
+
+// The certificate of the best point z: on the model solved and, for the
+// adaptive model, on the full model too (core/model/adaptive.h), the worse of
+// the two. False if the full model does not certify it.
+bool certify_best(const Scene& scene, const RobotProblem& problem, const ElasticSettings& tol,
+                  const Vector& z, Certificate& out) {
+  out = certify(problem.program(), z);
+  if (!problem.options().adaptive) return true;
+  const RobotProblem full(scene, ModelOptions{false, problem.options().horizon_max});
+  const Certificate c = certify(full.program(), problem.transfer(z, full));
+  out.max_violation = std::max(out.max_violation, c.max_violation);
+  out.max_complementarity = std::max(out.max_complementarity, c.max_complementarity);
+  out.complementarity_product = std::max(out.complementarity_product, c.complementarity_product);
+  return c.within(tol.violation_tol, tol.complementarity_tol);
+}
+
+}  // namespace
+
 SceneSolve solve_scene(const Scene& scene, const Settings& settings, const StartSpec& start,
                        double time_budget_s, const SolveCallback& on_solve) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -20,17 +39,22 @@ SceneSolve solve_scene(const Scene& scene, const Settings& settings, const Start
   ElasticSolver solver(ipopt, start.elastic);
 
   SceneSolve out;
-  out.problem = std::make_unique<RobotProblem>(scene);
+  out.problem = std::make_unique<RobotProblem>(scene, model_options(settings));
   RobotProblem& problem = *out.problem;
   out.result = reduce_objective(
       problem, solver, schedule, [&](double T) { return make_guess(problem, start, T); },
       on_solve, make_perturbation(problem, start));
+  if (out.result.found &&
+      !certify_best(scene, problem, start.elastic, out.result.best.z, out.info.certificate)) {
+    out.result.found = false;  // never expected: the plan is a proof
+    out.result.status = MpccStatus::kFailed;
+    out.result.feasibility_detail = "not certified on the full model";
+  }
   out.info.status = to_string(out.result.status);
   out.info.nlp_solves = out.result.nlp_solves;
   out.info.iterations = out.result.iterations;
   if (out.result.found) {
     out.z = out.result.best.z;
-    out.info.certificate = certify(problem.program(), out.z);
   } else if (!out.result.solves.empty()) {
     out.info.detail = out.result.feasibility_detail;
     out.info.certificate = out.result.solves.back().certificate;

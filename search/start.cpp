@@ -336,8 +336,8 @@ Paths retimed_paths(const RobotProblem& problem, const StartSpec& start, const V
     std::vector<std::array<double, 3>> old(N + 1);
     old[0] = {scene.robots[i].start[kX], scene.robots[i].start[kY], scene.robots[i].start[kPhi]};
     for (int t = 1; t <= N; ++t)
-      old[t] = {z[lay.state_index(i, t, kX)] * L, z[lay.state_index(i, t, kY)] * L,
-                z[lay.state_index(i, t, kPhi)]};
+      old[t] = {lay.state(i, t, kX).value(z) * L, lay.state(i, t, kY).value(z) * L,
+                lay.state(i, t, kPhi).value(z)};
     paths[i][0] = old[0];
     for (int t = 1; t < N; ++t) {
       const double tau = static_cast<double>(t) / N;

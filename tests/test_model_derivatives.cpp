@@ -108,6 +108,12 @@ std::vector<NamedScene> small_scenes() {
 
 // ------------------------------------------------------------- points ---
 
+// Sets unknown k of z; k < 0 is a quantity the model holds as a constant (or
+// does not have), which is left alone.
+void put(Vector& z, int k, double v) {
+  if (k >= 0) z[k] = v;
+}
+
 // Every unknown uniform in [-1.5, 1.5], T_f in [0.5, 3].
 Vector random_point(const RobotProblem& rp, unsigned seed) {
   std::mt19937 rng(seed);
@@ -129,7 +135,7 @@ Vector kink_point(const RobotProblem& rp, unsigned seed) {
   const Scene& s = L.scene();
   for (int i = 0; i < static_cast<int>(s.robots.size()); ++i) {
     for (int t = 1; t <= L.steps(); ++t)
-      for (int c : {kVx, kVy, kOmega}) z[L.state_index(i, t, c)] = tiny(rng);
+      for (int c : {kVx, kVy, kOmega}) put(z, L.state_index(i, t, c), tiny(rng));
     if (!L.has_floor_friction(i)) continue;
     const int K = s.robots[i].friction_edges;
     for (int t = 0; t < L.steps(); ++t) {
@@ -144,8 +150,7 @@ Vector kink_point(const RobotProblem& rp, unsigned seed) {
     }
   }
   for (int p = 0; p < static_cast<int>(s.pairs.size()); ++p)
-    if (L.has_contact(p))
-      for (int t = 0; t < L.steps(); ++t) z[L.contact_gamma_index(p, t)] = std::abs(tiny(rng));
+    for (int t = 0; t < L.steps(); ++t) put(z, L.contact_gamma_index(p, t), std::abs(tiny(rng)));
   return z;
 }
 
@@ -189,16 +194,15 @@ Vector contact_point(const RobotProblem& rp, unsigned seed) {
       const double gap = std::hypot(p[pr.j][0] - p[pr.i][0], p[pr.j][1] - p[pr.i][1]) -
                           R(pr.i) - R(pr.j);
       EXPECT_NEAR(gap, kGap, 1e-12);  // the construction itself
-      z[L.gap_index(q, t)] = gap;
+      put(z, L.gap_index(q, t), gap);
     }
   }
   for (int q = 0; q < static_cast<int>(s.pairs.size()); ++q) {
-    if (!L.has_contact(q)) continue;
     for (int t = 0; t < L.steps(); ++t) {
-      z[L.normal_force_index(q, t)] = force(rng);
-      z[L.alpha1_index(q, t)] = slip(rng);
-      z[L.alpha2_index(q, t)] = slip(rng);
-      z[L.contact_gamma_index(q, t)] = slip(rng);
+      put(z, L.normal_force_index(q, t), force(rng));
+      put(z, L.alpha1_index(q, t), slip(rng));
+      put(z, L.alpha2_index(q, t), slip(rng));
+      put(z, L.contact_gamma_index(q, t), slip(rng));
     }
   }
   return z;
@@ -299,6 +303,28 @@ TEST(ModelFullDerivatives, ThreeRobotContactScene) {
   // The straight-line guess is a point like any other.
   SCOPED_TRACE("straight-line guess");
   expect_exact_derivatives(rp, rp.straight_line_guess(3.0), 77);
+}
+
+// The full model (every unknown at every step, friction unknowns even with
+// mu = 0) and the adaptive one with pair windows that start late: the rows
+// at a window's edge use constants and unknowns side by side.
+TEST(ModelFullDerivatives, FullModelAndAdaptiveWindows) {
+  for (const auto& [name, scene] :
+       std::vector<NamedScene>{{"three_contact", three_contact_scene(12)}, {"mu_zero", frictionless_scene()}}) {
+    SCOPED_TRACE(name);
+    {
+      SCOPED_TRACE("full");
+      check_all_points(RobotProblem(scene, ModelOptions{false, kInf}), 5151);
+    }
+    SCOPED_TRACE("adaptive, T_max 0.6 s");
+    const RobotProblem rp(scene, ModelOptions{true, 0.6});
+    if (name == "three_contact") {
+      bool partial = false;
+      for (const PairPlan& w : rp.plan().pairs) partial = partial || (w.first > 1 && w.first <= w.last);
+      EXPECT_TRUE(partial) << "no window starts late: the check would not cover window edges";
+    }
+    check_all_points(rp, 6161);
+  }
 }
 
 // ------------------------------------------- Ipopt's derivative checker ---

@@ -111,7 +111,7 @@ bool bitwise_equal(const Vector& a, const Vector& b) {
 std::array<double, 2> position(const RobotProblem& rp, const Vector& z, int i, int t) {
   if (t == 0) return {rp.scene().robots[i].start[kX], rp.scene().robots[i].start[kY]};
   const double L = rp.units().length;
-  return {z[rp.layout().state_index(i, t, kX)] * L, z[rp.layout().state_index(i, t, kY)] * L};
+  return {rp.layout().state(i, t, kX).value(z) * L, rp.layout().state(i, t, kY).value(z) * L};
 }
 
 double min_centre_distance(const RobotProblem& rp, const Vector& z, int i, int j) {
@@ -458,23 +458,23 @@ TEST(Start, PerturbedGuessesDifferFromStraightButKeepStartAndTarget) {
         double moved = 0.0;
         for (int t = 1; t < scene.steps; ++t)
           for (int c : {kX, kY})
-            moved = std::max(moved, std::abs(z[lay.state_index(i, t, c)] -
-                                             straight[lay.state_index(i, t, c)]));
+            moved = std::max(moved, std::abs(lay.state(i, t, c).value(z) -
+                                             lay.state(i, t, c).value(straight)));
         EXPECT_GT(moved, 0.01 * s.perturbation * scale) << "robot " << i;
         // The start is exact: the first velocity is measured from it.
         for (int c : {kX, kY, kPhi}) {
           const int v = c == kX ? kVx : c == kY ? kVy : kOmega;
-          EXPECT_EQ(z[lay.state_index(i, 1, v)], (z[lay.state_index(i, 1, c)] - rb.start[c]) / h);
+          EXPECT_EQ(lay.state(i, 1, v).value(z), (lay.state(i, 1, c).value(z) - rb.start[c]) / h);
         }
         // The end is the nearest target point (the start where the target is free).
         for (int c : {kX, kY, kPhi})
-          EXPECT_NEAR(z[lay.state_index(i, scene.steps, c)], goal[c],
+          EXPECT_NEAR(lay.state(i, scene.steps, c).value(z), goal[c],
                       1e-12 * (1.0 + std::abs(goal[c])))
               << "robot " << i << " component " << c;
         // A force_dims 1 robot stays on its axis line (robot b of the apart scene).
         if (rb.force_dims == 1) {
           for (int t = 1; t <= scene.steps; ++t)
-            EXPECT_NEAR(z[lay.state_index(i, t, kY)], rb.start[kY], 1e-12);
+            EXPECT_NEAR(lay.state(i, t, kY).value(z), rb.start[kY], 1e-12);
         }
       }
     }
@@ -516,7 +516,7 @@ TEST(Start, PerturbedFeasibleRetimesTheFeasiblePathsWithConsistentKinematics) {
       for (int i = 0; i < static_cast<int>(ms.robots.size()); ++i) {
         const Robot& rb = ms.robots[i];
         auto at = [&](const Vector& z, int t, int c) {
-          return t == 0 ? rb.start[c] : z[lay.state_index(i, t, c)];
+          return t == 0 ? rb.start[c] : lay.state(i, t, c).value(z);
         };
         for (int c : {kX, kY, kPhi}) {
           const int v = c == kX ? kVx : c == kY ? kVy : kOmega;
@@ -527,7 +527,7 @@ TEST(Start, PerturbedFeasibleRetimesTheFeasiblePathsWithConsistentKinematics) {
           for (int t = 0; t < N; ++t) {
             // Kinematics: x[t+1] - x[t] = h v[t+1], from the exact start on.
             const double dx = at(p.guess, t + 1, c) - at(p.guess, t, c);
-            const double hv = h * p.guess[lay.state_index(i, t + 1, v)];
+            const double hv = h * lay.state(i, t + 1, v).value(p.guess);
             EXPECT_NEAR(dx, hv, 1e-9 * std::abs(dx) + 1e-15) << "robot " << i << " t " << t;
             moved = std::max(moved, std::abs(at(p.guess, t + 1, c) - at(feasible, t + 1, c)));
           }
@@ -539,7 +539,7 @@ TEST(Start, PerturbedFeasibleRetimesTheFeasiblePathsWithConsistentKinematics) {
       if (scene.name == "two_robots_swap_avoid") {
         double x = ms.robots[0].start[kX];
         for (int t = 1; t <= N; ++t) {
-          const double next = p.guess[lay.state_index(0, t, kX)];
+          const double next = lay.state(0, t, kX).value(p.guess);
           EXPECT_GE(next, x) << "t " << t;
           x = next;
         }

@@ -22,6 +22,12 @@ double positive(const Settings& s, const std::string& key) {
 
 }  // namespace
 
+ModelOptions model_options(const Settings& s) {
+  ModelOptions m;
+  m.adaptive = s.boolean("model.adaptive");
+  return m;
+}
+
 ElasticSettings elastic_settings(const Settings& s) {
   ElasticSettings e;
   const std::string f = s.text("elastic.formulation");

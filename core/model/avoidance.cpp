@@ -6,11 +6,10 @@ namespace disco {
 
 void add_avoidance(Layout& L, PolynomialProgram& P) {
   const Scene& s = L.scene();
-  for (int p = 0; p < static_cast<int>(s.pairs.size()); ++p) {
-    if (s.pairs[p].mode != PairMode::kAvoid) continue;
-    for (int t = 1; t <= L.steps(); ++t)
+  L.for_each_gap_state([&](int t, int p) {
+    if (s.pairs[p].mode == PairMode::kAvoid)
       P.set_variable_bounds(L.gap_index(p, t), s.pairs[p].safe_distance, kInf);
-  }
+  });
 }
 
 }  // namespace disco

@@ -2,7 +2,9 @@
 //
 // For every avoid pair (i, j) and state t = 1..N:   rho^{ij,t} >= d_s,
 // a bound on the gap unknown (core/model/gap.h). No contact forces exist
-// between such robots. (t = 0 is the start, checked when the scene is read.)
+// between such robots. (t = 0 is the start, checked when the scene is read;
+// outside the pair's window the robots are provably farther apart,
+// core/model/adaptive.h.)
 #pragma once
 
 #include "core/model/layout.h"

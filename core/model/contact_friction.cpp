@@ -7,6 +7,7 @@ namespace disco {
 void add_contact_friction(Layout& L, PolynomialProgram& P) {
   const Scene& s = L.scene();
   L.for_each_contact_step([&](int t, int p) {
+    if (!L.has_contact_friction(p)) return;
     const Pair& pr = s.pairs[p];
     const double Ri = s.robots[pr.i].radius, Rj = s.robots[pr.j].radius;
     const Affine o = L.centre_distance(p, t);

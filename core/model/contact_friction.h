@@ -1,7 +1,8 @@
 // disco — Coulomb friction between robots in contact (Section III-B and
 // Appendix A, the Psi(T_1), Psi(T_2) rows).
 //
-// For every contact pair (i, j) and interval t, with N = p^j - p^i and
+// For every contact pair (i, j) with friction unknowns (all in the full model,
+// those with mu > 0 in the adaptive one) and contact interval t, with N = p^j - p^i and
 // T = (-N_y, N_x) at state t, o = rho^t + R^i + R^j, and the relative sliding
 // velocity at the contact point, scaled by o, at t+1:
 //     v_T = T . (v^j - v^i) - o (R^j omega^j + R^i omega^i)

@@ -13,6 +13,7 @@ void add_dynamics(Layout& L, PolynomialProgram& P) {
       P.add(r, -1.0, L.step(), L.force(i, t, a));
       L.set_momentum_row(i, t, a, r);
     }
+    if (!L.rotates(i)) return;  // phi, omega constant: no rotational row
     const int r = P.add_row(0.0, 0.0);
     P.add(r, rb.inertia, L.state(i, t + 1, kOmega) - L.state(i, t, kOmega));
     P.add(r, rb.damping * rb.mass * s.gravity, L.step(), L.state(i, t + 1, kOmega));

@@ -3,16 +3,13 @@
 namespace disco {
 
 void add_gap(Layout& L, PolynomialProgram& P) {
-  const int np = static_cast<int>(L.scene().pairs.size());
-  for (int t = 1; t <= L.steps(); ++t) {
-    for (int p = 0; p < np; ++p) {
-      const int r = P.add_row(0.0, 0.0);
-      const Affine o = L.centre_distance(p, t), nx = L.normal(p, t, 0), ny = L.normal(p, t, 1);
-      P.add(r, 1.0, o, o);
-      P.add(r, -1.0, nx, nx);
-      P.add(r, -1.0, ny, ny);
-    }
-  }
+  L.for_each_gap_state([&](int t, int p) {
+    const int r = P.add_row(0.0, 0.0);
+    const Affine o = L.centre_distance(p, t), nx = L.normal(p, t, 0), ny = L.normal(p, t, 1);
+    P.add(r, 1.0, o, o);
+    P.add(r, -1.0, nx, nx);
+    P.add(r, -1.0, ny, ny);
+  });
 }
 
 }  // namespace disco

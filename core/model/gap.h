@@ -2,8 +2,8 @@
 //
 //     rho^{ij,t} = o^{ij,t} - R^i - R^j,   o = || p^j - p^i ||.
 //
-// rho is an unknown at every state t = 1..N of every pair (t = 0 is the
-// start), defined by the polynomial row
+// rho is an unknown at the states of the pair's window (every state t = 1..N
+// in the full model; t = 0 is the start), defined by the polynomial row
 //     (rho + R^i + R^j)^2 - (x^j - x^i)^2 - (y^j - y^i)^2 = 0.
 // With rho >= 0 (contact pairs) or rho >= d_s (avoid pairs) the root is the
 // unique one with o = rho + R^i + R^j > 0. This keeps every row of the model

@@ -7,21 +7,39 @@
 
 namespace disco {
 
-Layout::Layout(const Scene& s, PolynomialProgram& P) : scene_(s) {
+Layout::Layout(const Scene& s, const ModelPlan& plan, PolynomialProgram& P) : scene_(s) {
   const int N = s.steps;
   const int nr = static_cast<int>(s.robots.size());
   const int np = static_cast<int>(s.pairs.size());
+  DISCO_CHECK(static_cast<int>(plan.rotates.size()) == nr, "a plan entry per robot");
+  DISCO_CHECK(static_cast<int>(plan.pairs.size()) == np, "a plan entry per pair");
   robots_.resize(nr);
   pairs_.resize(np);
   momentum_.assign(nr, std::vector<std::array<int, 3>>(N, {-1, -1, -1}));
 
   t_f_ = P.add_variable(0.0, kInf, 1.0);
   for (int i = 0; i < nr; ++i) {
+    robots_[i].rotates = plan.rotates[i];
     robots_[i].state.assign(N + 1, {-1, -1, -1, -1, -1, -1});
     robots_[i].force.resize(N);
     if (s.robots[i].mu > 0) robots_[i].beta.resize(N);
   }
-  for (int p = 0; p < np; ++p) pairs_[p].rho.assign(N + 1, -1);
+  // Which states carry rho and which intervals carry contact unknowns.
+  std::vector<std::vector<bool>> gap_at(np, std::vector<bool>(N + 1, false));
+  std::vector<std::vector<bool>> contact_at(np, std::vector<bool>(N, false));
+  for (int p = 0; p < np; ++p) {
+    const PairPlan& w = plan.pairs[p];
+    DISCO_CHECK(w.empty() || (1 <= w.first && w.last <= N), "a window lies within 1..N");
+    auto& v = pairs_[p];
+    v.friction = w.friction;
+    v.rho.assign(N + 1, -1);
+    for (auto* index : {&v.cn, &v.a1, &v.a2, &v.gamma}) index->assign(N, -1);
+    if (w.empty()) continue;
+    const bool contact = s.pairs[p].mode == PairMode::kContact;
+    for (int t = std::max(1, contact ? w.first - 1 : w.first); t <= w.last; ++t) gap_at[p][t] = true;
+    if (contact)
+      for (int t = w.first - 1; t < w.last; ++t) contact_at[p][t] = true;
+  }
 
   // Unknowns in time order (interval t, then the state it leads to), which
   // keeps the KKT matrix banded in time.
@@ -36,17 +54,20 @@ Layout::Layout(const Scene& s, PolynomialProgram& P) : scene_(s) {
       }
     }
     for (int p = 0; p < np; ++p) {
-      if (s.pairs[p].mode != PairMode::kContact) continue;
+      if (!contact_at[p][t]) continue;
       auto& v = pairs_[p];
-      v.cn.push_back(P.add_variable(0, kInf));
-      v.a1.push_back(P.add_variable(0, kInf));
-      v.a2.push_back(P.add_variable(0, kInf));
-      v.gamma.push_back(P.add_variable(0, kInf));
+      v.cn[t] = P.add_variable(0, kInf);
+      if (!v.friction) continue;
+      v.a1[t] = P.add_variable(0, kInf);
+      v.a2[t] = P.add_variable(0, kInf);
+      v.gamma[t] = P.add_variable(0, kInf);
     }
     for (int i = 0; i < nr; ++i)
       for (int c = 0; c < kStateSize; ++c)
-        robots_[i].state[t + 1][c] = P.add_variable(-kInf, kInf);
-    for (int p = 0; p < np; ++p) pairs_[p].rho[t + 1] = P.add_variable(-kInf, kInf);
+        if (robots_[i].rotates || (c != kPhi && c != kOmega))
+          robots_[i].state[t + 1][c] = P.add_variable(-kInf, kInf);
+    for (int p = 0; p < np; ++p)
+      if (gap_at[p][t + 1]) pairs_[p].rho[t + 1] = P.add_variable(-kInf, kInf);
   }
 }
 
@@ -55,8 +76,10 @@ int Layout::state_index(int robot, int t, int component) const {
 }
 
 Affine Layout::state(int robot, int t, int component) const {
-  if (t == 0) return Affine(scene_.robots[robot].start[component]);
-  return Affine::variable(robots_[robot].state[t][component]);
+  const int k = state_index(robot, t, component);
+  if (k >= 0) return Affine::variable(k);
+  // The start, or phi and omega (= phi^0, 0) of a robot that does not turn.
+  return Affine(scene_.robots[robot].start[component]);
 }
 
 Affine Layout::force(int robot, int t, int axis) const {
@@ -89,7 +112,10 @@ int Layout::momentum_row(int robot, int t, int axis) const {
 
 int Layout::gap_index(int pair, int t) const { return t == 0 ? -1 : pairs_[pair].rho[t]; }
 
+bool Layout::has_gap(int pair, int t) const { return t == 0 || pairs_[pair].rho[t] >= 0; }
+
 Affine Layout::gap(int pair, int t) const {
+  DISCO_CHECK(has_gap(pair, t), "the gap of a pair outside its window");
   if (t == 0) {
     const Pair& p = scene_.pairs[pair];
     const auto& a = scene_.robots[p.i].start;

@@ -4,12 +4,21 @@
 // The step is h = T_f / N with T_f an unknown.
 //
 //   per robot i, state t = 1..N:   x, y, phi, vx, vy, omega
-//                  (t = 0 is the given start: constants, not unknowns)
+//                  (t = 0 is the given start: constants, not unknowns;
+//                  phi, omega stay constants of a robot that does not turn)
 //   per robot i, interval t:       F (1 unknown along the force axis if D_ef = 1,
 //                                  else F_x, F_y); floor friction beta_1..beta_K,
 //                                  gamma (only if mu > 0)
-//   per pair p,  state t = 1..N:   rho, the gap between the disks (t = 0: constant)
-//   per contact pair, interval t:  c_n, alpha_1, alpha_2, gamma
+//   per pair p,  state t:          rho, the gap between the disks, at the states of
+//                                  the pair's window (t = 0: constant)
+//   per contact pair, interval t:  c_n (and alpha_1, alpha_2, gamma with friction)
+//                                  for the intervals ending in the window
+//
+// What exists is decided by a ModelPlan (core/model/adaptive.h): the full
+// model of Appendix A, or only what the scene needs. For a contact pair with
+// window [first, last], the contact intervals are first-1 .. last-1 (c_n^t
+// pairs with rho^{t+1}) and rho exists at states first-1 .. last (contact
+// friction at interval t uses rho^t); an avoid pair has rho at first .. last.
 //
 // Accessors return Affine expressions, so a constant (t = 0) and an unknown
 // are used alike by the constraint families. The layout also owns the rows of
@@ -20,6 +29,7 @@
 #include <array>
 #include <vector>
 
+#include "core/model/adaptive.h"
 #include "core/model/scene.h"
 #include "core/nlp/polynomial_program.h"
 
@@ -27,9 +37,9 @@ namespace disco {
 
 class Layout {
  public:
-  // Creates every unknown in `P` (with only the bounds its kind implies:
-  // multipliers >= 0, T_f > 0) for a scene in model units.
-  Layout(const Scene& model_scene, PolynomialProgram& P);
+  // Creates the unknowns `plan` asks for in `P` (with only the bounds their
+  // kind implies: multipliers >= 0, T_f > 0) for a scene in model units.
+  Layout(const Scene& model_scene, const ModelPlan& plan, PolynomialProgram& P);
 
   const Scene& scene() const { return scene_; }
   int steps() const { return scene_.steps; }
@@ -38,8 +48,10 @@ class Layout {
   Affine horizon() const { return Affine::variable(t_f_); }
   Affine step() const { return Affine::variable(t_f_, 1.0 / scene_.steps); }  // h
 
+  // A constant at t = 0, and for phi and omega of a robot that does not turn.
   Affine state(int robot, int t, int component) const;
-  int state_index(int robot, int t, int component) const;  // -1 at t = 0
+  int state_index(int robot, int t, int component) const;  // -1 where state() is a constant
+  bool rotates(int robot) const { return robots_[robot].rotates; }
   // World-frame control force component (axis 0 = x, 1 = y) over interval t.
   Affine force(int robot, int t, int axis) const;
   bool has_floor_friction(int robot) const { return !robots_[robot].gamma.empty(); }
@@ -50,25 +62,31 @@ class Layout {
   // Force unknowns of robot i over interval t (1 or 2).
   const std::vector<int>& force_indices(int robot, int t) const { return robots_[robot].force[t]; }
 
-  Affine gap(int pair, int t) const;               // rho
+  bool has_gap(int pair, int t) const;             // t = 0, or rho^t is an unknown
+  Affine gap(int pair, int t) const;               // rho; needs has_gap
   int gap_index(int pair, int t) const;            // -1 at t = 0
-  Affine centre_distance(int pair, int t) const;   // o = rho + R_i + R_j
+  Affine centre_distance(int pair, int t) const;   // o = rho + R_i + R_j; needs has_gap
   // N = p_j - p_i (not unit), T = N turned +90 degrees: (-N_y, N_x).
   Affine normal(int pair, int t, int axis) const;
   Affine tangent(int pair, int t, int axis) const;
-  bool has_contact(int pair) const { return !pairs_[pair].cn.empty(); }
-  Affine normal_force(int pair, int t) const { return Affine::variable(pairs_[pair].cn[t]); }
-  Affine alpha1(int pair, int t) const { return Affine::variable(pairs_[pair].a1[t]); }
-  Affine alpha2(int pair, int t) const { return Affine::variable(pairs_[pair].a2[t]); }
-  Affine contact_gamma(int pair, int t) const { return Affine::variable(pairs_[pair].gamma[t]); }
-  int normal_force_index(int pair, int t) const { return pairs_[pair].cn[t]; }
+  bool is_contact(int pair) const { return scene_.pairs[pair].mode == PairMode::kContact; }
+  // Contact interval t: c_n^t exists (and, with friction, alpha_1, alpha_2, gamma).
+  bool has_contact(int pair, int t) const { return pairs_[pair].cn[t] >= 0; }
+  bool has_contact_friction(int pair) const { return pairs_[pair].friction; }
+  // Contact unknowns of interval t; the constant 0 outside the window (no force acts).
+  Affine normal_force(int pair, int t) const { return contact_value(pairs_[pair].cn, t); }
+  Affine alpha1(int pair, int t) const { return contact_value(pairs_[pair].a1, t); }
+  Affine alpha2(int pair, int t) const { return contact_value(pairs_[pair].a2, t); }
+  Affine contact_gamma(int pair, int t) const { return contact_value(pairs_[pair].gamma, t); }
+  int normal_force_index(int pair, int t) const { return pairs_[pair].cn[t]; }  // -1 if none
   int alpha1_index(int pair, int t) const { return pairs_[pair].a1[t]; }
   int alpha2_index(int pair, int t) const { return pairs_[pair].a2[t]; }
   int contact_gamma_index(int pair, int t) const { return pairs_[pair].gamma[t]; }
 
   // The per-step loops every constraint family runs: f(t, robot) for every
-  // interval t = 0..N-1 and robot; f(t, pair) for every interval and contact
-  // pair. Families state only what holds at one step.
+  // interval t = 0..N-1 and robot; f(t, pair) for every contact interval of
+  // every contact pair (its window); f(t, pair) for every state t = 1..N with
+  // a gap unknown. Families state only what holds at one step.
   template <class F>
   void for_each_robot_step(F&& f) const {
     for (int t = 0; t < steps(); ++t)
@@ -78,7 +96,13 @@ class Layout {
   void for_each_contact_step(F&& f) const {
     for (int t = 0; t < steps(); ++t)
       for (int p = 0; p < static_cast<int>(scene_.pairs.size()); ++p)
-        if (has_contact(p)) f(t, p);
+        if (has_contact(p, t)) f(t, p);
+  }
+  template <class F>
+  void for_each_gap_state(F&& f) const {
+    for (int t = 1; t <= steps(); ++t)
+      for (int p = 0; p < static_cast<int>(scene_.pairs.size()); ++p)
+        if (pairs_[p].rho[t] >= 0) f(t, p);
   }
 
   // Momentum rows (axis 0: x, 1: y, 2: rotation) of robot i over interval t;
@@ -87,14 +111,20 @@ class Layout {
   void set_momentum_row(int robot, int t, int axis, int row) { momentum_[robot][t][axis] = row; }
 
  private:
+  Affine contact_value(const std::vector<int>& index, int t) const {
+    return index[t] >= 0 ? Affine::variable(index[t]) : Affine(0.0);
+  }
+
   struct RobotVars {
-    std::vector<std::array<int, kStateSize>> state;  // [t], t = 0 unused
+    bool rotates = true;
+    std::vector<std::array<int, kStateSize>> state;  // [t], t = 0 unused; -1: constant
     std::vector<std::vector<int>> force, beta;       // [t][axis or k]
     std::vector<int> gamma;                          // [t]
   };
   struct PairVars {
-    std::vector<int> rho;                  // [t], t = 0 unused
-    std::vector<int> cn, a1, a2, gamma;    // [t], contact pairs only
+    bool friction = false;
+    std::vector<int> rho;                  // [state t], -1: none (t = 0: the constant)
+    std::vector<int> cn, a1, a2, gamma;    // [interval t], -1: none
   };
   Scene scene_;
   int t_f_ = -1;

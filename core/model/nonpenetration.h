@@ -1,7 +1,8 @@
 // disco — nonpenetration of contact pairs (Section III-B; Appendix A,
 // "0 <= c_n _|_ rho").
 //
-// For every contact pair (i, j) and interval t = 0..N-1:
+// For every contact pair (i, j) and contact interval t (every t = 0..N-1 in
+// the full model, the pair's window in the adaptive one, core/model/adaptive.h):
 //     0 <= c_n^t  _|_  rho^{t+1} >= 0
 // and the normal impulse h c_n^t N^t acts on robot j, its opposite on robot i,
 // with N^t = p^j(t) - p^i(t) (not a unit vector: the push has magnitude

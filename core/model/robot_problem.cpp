@@ -39,7 +39,9 @@ Vector guess_from_positions(const Layout& layout, int num_variables,
       q[i][t][kVx] = (q[i][t][kX] - q[i][t - 1][kX]) / h;
       q[i][t][kVy] = (q[i][t][kY] - q[i][t - 1][kY]) / h;
       q[i][t][kOmega] = (q[i][t][kPhi] - q[i][t - 1][kPhi]) / h;
-      for (int c = 0; c < kStateSize; ++c) z[layout.state_index(i, t, c)] = q[i][t][c];
+      if (!layout.rotates(i)) q[i][t][kPhi] = q[i][0][kPhi], q[i][t][kOmega] = 0.0;
+      for (int c = 0; c < kStateSize; ++c)
+        if (const int k = layout.state_index(i, t, c); k >= 0) z[k] = q[i][t][c];
     }
   // Floor friction opposing v^{t+1}, and the force that balances momentum.
   for (int i = 0; i < nr; ++i) {
@@ -82,11 +84,13 @@ Vector guess_from_positions(const Layout& layout, int num_variables,
     const Pair& pr = s.pairs[p];
     const double R = s.robots[pr.i].radius + s.robots[pr.j].radius;
     for (int t = 1; t <= N; ++t) {
+      if (!layout.has_gap(p, t)) continue;
       const double nx = q[pr.j][t][kX] - q[pr.i][t][kX], ny = q[pr.j][t][kY] - q[pr.i][t][kY];
       z[layout.gap_index(p, t)] = std::hypot(nx, ny) - R;
     }
-    if (!layout.has_contact(p)) continue;
+    if (!layout.has_contact_friction(p)) continue;
     for (int t = 0; t < N; ++t) {
+      if (!layout.has_contact(p, t)) continue;
       const double nx = q[pr.j][t][kX] - q[pr.i][t][kX], ny = q[pr.j][t][kY] - q[pr.i][t][kY];
       const double vt = -ny * (q[pr.j][t + 1][kVx] - q[pr.i][t + 1][kVx]) +
                         nx * (q[pr.j][t + 1][kVy] - q[pr.i][t + 1][kVy]);
@@ -105,23 +109,39 @@ const std::vector<Family>& all_families() {
   return all;
 }
 
-RobotProblem::RobotProblem(const Scene& scene, const std::vector<Family>& families)
-    : scene_(scene),
-      units_(choose_units(scene)),
-      program_(),
-      layout_(to_model_units(scene, units_), program_) {
-  auto has = [&](Family f) { return std::find(families.begin(), families.end(), f) != families.end(); };
+RobotProblem::RobotProblem(const Scene& scene, const std::vector<Family>& families,
+                           const ModelOptions& options)
+    : scene_(scene), units_(choose_units(scene)), families_(families), options_(options) {
+  DISCO_CHECK(options.horizon_max > 0, "the largest horizon is positive");
+  build();
+}
+
+void RobotProblem::build() {
+  const Scene model_scene = to_model_units(scene_, units_);
+  const double T_max = options_.horizon_max / units_.time;
+  plan_ = plan_model(model_scene, options_.adaptive, T_max);
+  program_ = PolynomialProgram();
+  layout_.emplace(model_scene, plan_, program_);
+  Layout& L = *layout_;
+  auto has = [&](Family f) { return std::find(families_.begin(), families_.end(), f) != families_.end(); };
   // Dynamics first: the force families add impulses to its rows.
-  add_dynamics(layout_, program_);
-  if (has(Family::kKinematics)) add_kinematics(layout_, program_);
-  if (has(Family::kFloorFriction)) add_floor_friction(layout_, program_);
-  if (has(Family::kGap)) add_gap(layout_, program_);
-  if (has(Family::kNonpenetration)) add_nonpenetration(layout_, program_);
-  if (has(Family::kContactFriction)) add_contact_friction(layout_, program_);
-  if (has(Family::kAvoidance)) add_avoidance(layout_, program_);
-  if (has(Family::kBounds)) add_bounds(layout_, program_, kHorizonMin, kInf);
-  program_.add(PolynomialProgram::kObjective, 1.0, layout_.horizon());  // minimize T_f
+  add_dynamics(L, program_);
+  if (has(Family::kKinematics)) add_kinematics(L, program_);
+  if (has(Family::kFloorFriction)) add_floor_friction(L, program_);
+  if (has(Family::kGap)) add_gap(L, program_);
+  if (has(Family::kNonpenetration)) add_nonpenetration(L, program_);
+  if (has(Family::kContactFriction)) add_contact_friction(L, program_);
+  if (has(Family::kAvoidance)) add_avoidance(L, program_);
+  if (has(Family::kBounds)) add_bounds(L, program_, kHorizonMin, std::max(kHorizonMin, T_max));
+  program_.add(PolynomialProgram::kObjective, 1.0, L.horizon());  // minimize T_f
   program_.finalize();
+}
+
+void RobotProblem::set_horizon_max(double max_seconds) {
+  DISCO_CHECK(max_seconds > 0, "the largest horizon is positive");
+  if (max_seconds == options_.horizon_max) return;
+  options_.horizon_max = max_seconds;
+  build();
 }
 
 ModelSize RobotProblem::size() const {
@@ -130,17 +150,18 @@ ModelSize RobotProblem::size() const {
 }
 
 void RobotProblem::fix_horizon(double seconds) {
-  const double T = seconds / units_.time;
-  program_.set_variable_bounds(layout_.horizon_index(), T, T);
+  DISCO_CHECK(seconds <= options_.horizon_max * (1 + 1e-12), "a fixed horizon within the largest one");
+  const double T = std::min(seconds, options_.horizon_max) / units_.time;
+  program_.set_variable_bounds(layout_->horizon_index(), T, T);
 }
 
 void RobotProblem::limit_horizon(double max_seconds) {
-  program_.set_variable_bounds(layout_.horizon_index(), kHorizonMin,
-                               std::max(kHorizonMin, max_seconds / units_.time));
+  const double T = std::min(max_seconds, options_.horizon_max) / units_.time;
+  program_.set_variable_bounds(layout_->horizon_index(), kHorizonMin, std::max(kHorizonMin, T));
 }
 
 double RobotProblem::horizon(const ConstVectorRef& z) const {
-  return z[layout_.horizon_index()] * units_.time;
+  return z[layout_->horizon_index()] * units_.time;
 }
 
 std::optional<double> RobotProblem::lower_bound() const { return scene_lower_bound(scene_); }
@@ -148,7 +169,7 @@ std::optional<double> RobotProblem::lower_bound() const { return scene_lower_bou
 std::optional<double> RobotProblem::reference_time() const { return scene_reference_time(scene_); }
 
 Vector RobotProblem::straight_line_guess(double seconds) const {
-  const Scene& s = layout_.scene();  // model units
+  const Scene& s = layout_->scene();  // model units
   const int N = s.steps, nr = static_cast<int>(s.robots.size());
   // States: t = 0 is the start; positions follow a smoothstep.
   std::vector<std::vector<State>> q(nr, std::vector<State>(N + 1));
@@ -162,12 +183,12 @@ Vector RobotProblem::straight_line_guess(double seconds) const {
       for (int c : {kX, kY, kPhi}) q[i][t][c] = rb.start[c] + w * (goal[c] - rb.start[c]);
     }
   }
-  return guess_from_positions(layout_, program_.num_variables(), q, seconds / units_.time);
+  return guess_from_positions(*layout_, program_.num_variables(), q, seconds / units_.time);
 }
 
 Vector RobotProblem::guess_from_paths(const std::vector<std::vector<std::array<double, 3>>>& xyphi,
                                       double seconds) const {
-  const Scene& s = layout_.scene();  // model units
+  const Scene& s = layout_->scene();  // model units
   const int N = s.steps, nr = static_cast<int>(s.robots.size());
   DISCO_CHECK(static_cast<int>(xyphi.size()) == nr, "one path per robot");
   std::vector<std::vector<State>> q(nr, std::vector<State>(N + 1));
@@ -180,7 +201,67 @@ Vector RobotProblem::guess_from_paths(const std::vector<std::vector<std::array<d
       q[i][t][kPhi] = xyphi[i][t][2];  // angles are unitless
     }
   }
-  return guess_from_positions(layout_, program_.num_variables(), q, seconds / units_.time);
+  return guess_from_positions(*layout_, program_.num_variables(), q, seconds / units_.time);
+}
+
+Vector RobotProblem::transfer(const Vector& z, const RobotProblem& to) const {
+  const Layout& A = *layout_;
+  const Layout& B = to.layout();
+  const Scene& s = A.scene();
+  DISCO_CHECK(z.size() == program_.num_variables(), "a point of this model");
+  DISCO_CHECK(B.scene().robots.size() == s.robots.size() && B.scene().pairs.size() == s.pairs.size() &&
+                  B.steps() == A.steps() && to.units_.length == units_.length &&
+                  to.units_.time == units_.time,
+              "a model of the same scene");
+  const int N = s.steps, nr = static_cast<int>(s.robots.size());
+  const int np = static_cast<int>(s.pairs.size());
+  Vector out = Vector::Zero(to.program().num_variables());
+  auto value = [&](const Affine& a) { return a.value(z); };
+  auto put = [&](int k, double v) {
+    if (k >= 0) out[k] = v;
+  };
+  out[B.horizon_index()] = z[A.horizon_index()];
+  for (int i = 0; i < nr; ++i) {
+    for (int t = 1; t <= N; ++t)
+      for (int c = 0; c < kStateSize; ++c) put(B.state_index(i, t, c), value(A.state(i, t, c)));
+    for (int t = 0; t < N; ++t) {
+      const auto& fa = A.force_indices(i, t);
+      const auto& fb = B.force_indices(i, t);
+      for (std::size_t a = 0; a < fb.size(); ++a) out[fb[a]] = z[fa[a]];
+      if (!B.has_floor_friction(i)) continue;
+      for (int k = 0; k < s.robots[i].friction_edges; ++k) out[B.beta_index(i, t, k)] = z[A.beta_index(i, t, k)];
+      out[B.floor_gamma_index(i, t)] = z[A.floor_gamma_index(i, t)];
+    }
+  }
+  for (int p = 0; p < np; ++p) {
+    const Pair& pr = s.pairs[p];
+    const double R = s.robots[pr.i].radius + s.robots[pr.j].radius;
+    for (int t = 1; t <= N; ++t) {
+      if (!B.has_gap(p, t)) continue;
+      put(B.gap_index(p, t), A.has_gap(p, t) ? value(A.gap(p, t))
+                                             : std::hypot(value(A.normal(p, t, 0)), value(A.normal(p, t, 1))) - R);
+    }
+    for (int t = 0; t < N; ++t) {
+      put(B.normal_force_index(p, t), value(A.normal_force(p, t)));
+      put(B.alpha1_index(p, t), value(A.alpha1(p, t)));
+      put(B.alpha2_index(p, t), value(A.alpha2(p, t)));
+      if (B.contact_gamma_index(p, t) < 0) continue;
+      if (A.contact_gamma_index(p, t) >= 0) {
+        out[B.contact_gamma_index(p, t)] = z[A.contact_gamma_index(p, t)];
+        continue;
+      }
+      // No friction acts: gamma >= |v_T| satisfies both rows; take the least.
+      const double o = std::hypot(value(A.normal(p, t, 0)), value(A.normal(p, t, 1)));
+      double vT = -o * (s.robots[pr.j].radius * value(A.state(pr.j, t + 1, kOmega)) +
+                        s.robots[pr.i].radius * value(A.state(pr.i, t + 1, kOmega)));
+      for (int a = 0; a < 2; ++a) {
+        const int vel = a == 0 ? kVx : kVy;
+        vT += value(A.tangent(p, t, a)) * (value(A.state(pr.j, t + 1, vel)) - value(A.state(pr.i, t + 1, vel)));
+      }
+      out[B.contact_gamma_index(p, t)] = std::abs(vT);
+    }
+  }
+  return out;
 }
 
 }  // namespace disco

@@ -8,14 +8,18 @@
 // since the force families add their impulses to its rows).
 //
 // The horizon T_f is an unknown with bounds: fix_horizon() pins it (the
-// feasibility phase), limit_horizon() bounds it above (objective reduction).
-// All times given to or returned by this class are in seconds (SI).
+// feasibility phase), limit_horizon() bounds it above (objective reduction),
+// never above the largest horizon T_max of the ModelOptions. The adaptive
+// model (core/model/adaptive.h) builds only what a scene needs up to T_max;
+// set_horizon_max() rebuilds it for another T_max. All times given to or
+// returned by this class are in seconds (SI).
 #pragma once
 
 #include <array>
 #include <optional>
 #include <vector>
 
+#include "core/model/adaptive.h"
 #include "core/model/layout.h"
 #include "core/model/scene.h"
 #include "core/model/units.h"
@@ -41,17 +45,26 @@ struct ModelSize {
 
 class RobotProblem {
  public:
-  explicit RobotProblem(const Scene& scene, const std::vector<Family>& families = all_families());
+  explicit RobotProblem(const Scene& scene, const std::vector<Family>& families = all_families(),
+                        const ModelOptions& options = {});
+  RobotProblem(const Scene& scene, const ModelOptions& options)
+      : RobotProblem(scene, all_families(), options) {}
 
   PolynomialProgram& program() { return program_; }
   const PolynomialProgram& program() const { return program_; }
-  const Layout& layout() const { return layout_; }
+  const Layout& layout() const { return *layout_; }
   const Units& units() const { return units_; }
   const Scene& scene() const { return scene_; }  // SI
   ModelSize size() const;
+  const ModelOptions& options() const { return options_; }
+  const ModelPlan& plan() const { return plan_; }
 
-  void fix_horizon(double seconds);
-  void limit_horizon(double max_seconds);  // T_f in [minimum, max_seconds]
+  // Rebuilds the model for T_f <= max_seconds, if that changes it. Every point
+  // of the model before (and any reference to program() or layout() data) is
+  // then invalid: call it only between solves that share no point.
+  void set_horizon_max(double max_seconds);
+  void fix_horizon(double seconds);        // T_f = seconds (<= T_max)
+  void limit_horizon(double max_seconds);  // T_f in [minimum, min(max_seconds, T_max)]
   double horizon(const ConstVectorRef& z) const;  // T_f of a point, seconds
   std::optional<double> lower_bound() const;      // seconds (core/model/lower_bound.h)
   std::optional<double> reference_time() const;   // seconds: a scale, not a bound
@@ -69,11 +82,24 @@ class RobotProblem {
   Vector guess_from_paths(const std::vector<std::vector<std::array<double, 3>>>& xyphi,
                           double seconds) const;
 
+  // The point of `to` (the same scene, another plan: e.g. the full model) that
+  // the point z of this model describes. Unknowns both have are copied; those
+  // only `to` has take the values the plan proves (core/model/adaptive.h):
+  // gaps from the centres, contact forces and friction multipliers 0, contact
+  // gamma = |v_T| (core/model/contact_friction.h), phi = phi^0 and omega = 0. Certifying the result on
+  // `to` checks the adaptive model's answer on the full model.
+  Vector transfer(const Vector& z, const RobotProblem& to) const;
+
  private:
+  void build();
+
   Scene scene_;
   Units units_;
+  std::vector<Family> families_;
+  ModelOptions options_;
+  ModelPlan plan_;
   PolynomialProgram program_;
-  Layout layout_;
+  std::optional<Layout> layout_;  // set by build()
 };
 
 }  // namespace disco

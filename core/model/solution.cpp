@@ -67,10 +67,12 @@ json solution_json(const RobotProblem& problem, const Vector& z, const SolutionI
                {"mu", pr.mu}};
     if (has) {
       std::vector<double> dist(N + 1), fn(N, 0.0), ft(N, 0.0);
-      for (int t = 0; t <= N; ++t) dist[t] = value(L.gap(p, t)) * u.length;
-      if (L.has_contact(p)) {
-        const double Ri = ms.robots[pr.i].radius, Rj = ms.robots[pr.j].radius;
+      const double Ri = ms.robots[pr.i].radius, Rj = ms.robots[pr.j].radius;
+      for (int t = 0; t <= N; ++t)  // from the centres: outside its window a pair has no gap unknown
+        dist[t] = (std::hypot(value(L.normal(p, t, 0)), value(L.normal(p, t, 1))) - Ri - Rj) * u.length;
+      if (L.is_contact(p)) {
         for (int t = 0; t < N; ++t) {
+          if (!L.has_contact(p, t)) continue;  // no force acts
           const double cn = value(L.normal_force(p, t));
           const double slip = value(L.alpha1(p, t)) - value(L.alpha2(p, t));
           const double o = value(L.centre_distance(p, t));

@@ -1,0 +1,158 @@
+#include "core/model/adaptive.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+
+#include "core/util/check.h"
+
+namespace disco {
+namespace {
+
+// A rounded box: the points within `radius` of the box [lo, hi] (a point when
+// lo = hi; the plane when a side or the radius is infinite).
+struct RoundedBox {
+  std::array<double, 2> lo, hi;
+  double radius;
+};
+
+// A lower bound on the distance between a point of `a` and a point of `b`.
+double distance_bound(const RoundedBox& a, const RoundedBox& b) {
+  double squared = 0.0;
+  for (int k = 0; k < 2; ++k) {
+    const double gap = std::max({0.0, b.lo[k] - a.hi[k], a.lo[k] - b.hi[k]});
+    if (std::isnan(gap)) return -kInf;  // inf - inf: unbounded on both sides
+    squared += gap * gap;
+  }
+  return std::sqrt(squared) - a.radius - b.radius;
+}
+
+// The largest speed in a target velocity box (infinite if unbounded).
+double largest_speed(const StateBox& box) {
+  double squared = 0.0;
+  for (int c : {kVx, kVy}) {
+    const double m = std::max(std::abs(box.lower[c]), std::abs(box.upper[c]));
+    squared += m * m;
+  }
+  return std::sqrt(squared);
+}
+
+// Connected components of the graph of contact-mode pairs: a label per robot.
+std::vector<int> contact_components(const Scene& s) {
+  std::vector<int> label(s.robots.size());
+  std::iota(label.begin(), label.end(), 0);
+  auto root = [&](int i) {
+    while (label[i] != i) i = label[i] = label[label[i]];
+    return i;
+  };
+  for (const Pair& p : s.pairs)
+    if (p.mode == PairMode::kContact) label[root(p.j)] = root(p.i);
+  for (int i = 0; i < static_cast<int>(label.size()); ++i) label[i] = root(i);
+  return label;
+}
+
+}  // namespace
+
+std::vector<std::vector<double>> speed_bounds(const Scene& s, double h) {
+  const int N = s.steps, nr = static_cast<int>(s.robots.size());
+  const std::vector<int> comp = contact_components(s);
+  std::vector<int> size(nr, 0);
+  for (int c : comp) ++size[c];
+  // Per component: G^2 and the start energy e0^2.
+  std::vector<double> G2(nr, 0.0), e2(nr, 0.0);
+  auto force_bound = [](const Robot& rb) { return std::sqrt(double(rb.force_dims)) * rb.force_max; };
+  for (int i = 0; i < nr; ++i) {
+    const Robot& rb = s.robots[i];
+    const double F = force_bound(rb);
+    G2[comp[i]] += F * F / rb.mass;
+    e2[comp[i]] += rb.mass * (rb.start[kVx] * rb.start[kVx] + rb.start[kVy] * rb.start[kVy]) +
+                   rb.inertia * rb.start[kOmega] * rb.start[kOmega];
+  }
+  std::vector<std::vector<double>> energy(nr);  // e^s of component roots
+  for (int c = 0; c < nr; ++c) {
+    if (size[c] < 2) continue;
+    const double hG = h * std::sqrt(G2[c]);
+    energy[c].resize(N + 1);
+    energy[c][0] = std::sqrt(e2[c]);
+    for (int t = 0; t < N; ++t) energy[c][t + 1] = hG + std::hypot(hG, energy[c][t]);
+  }
+  std::vector<std::vector<double>> u(nr, std::vector<double>(N + 1));
+  for (int i = 0; i < nr; ++i) {
+    const Robot& rb = s.robots[i];
+    if (size[comp[i]] >= 2) {
+      for (int t = 0; t <= N; ++t) u[i][t] = energy[comp[i]][t] / std::sqrt(rb.mass);
+      continue;
+    }
+    const double a = force_bound(rb) / rb.mass, b = a + rb.mu * s.gravity;
+    const double v0 = std::hypot(rb.start[kVx], rb.start[kVy]), vT = largest_speed(rb.target);
+    for (int t = 0; t <= N; ++t) u[i][t] = std::min(v0 + t * h * a, vT + (N - t) * h * b);
+  }
+  return u;
+}
+
+ModelPlan plan_model(const Scene& s, bool adaptive, double horizon_max) {
+  const int N = s.steps, nr = static_cast<int>(s.robots.size());
+  const int np = static_cast<int>(s.pairs.size());
+  ModelPlan plan;
+  plan.rotates.assign(nr, true);
+  plan.pairs.resize(np);
+  for (int p = 0; p < np; ++p) {
+    plan.pairs[p] = {1, N, s.pairs[p].mode == PairMode::kContact};
+    if (adaptive) plan.pairs[p].friction = plan.pairs[p].friction && s.pairs[p].mu > 0;
+  }
+  if (!adaptive) return plan;
+
+  // Pair windows from the reach regions (items 1-3 of the header).
+  DISCO_CHECK(horizon_max > 0, "the largest horizon is positive");
+  if (std::isfinite(horizon_max)) {
+    const double h = horizon_max / N;
+    const auto u = speed_bounds(s, h);
+    // forward[i][t] = r_f(t), backward[i][t] = r_b(t).
+    std::vector<std::vector<double>> forward(nr, std::vector<double>(N + 1, 0.0)), backward = forward;
+    for (int i = 0; i < nr; ++i) {
+      for (int t = 1; t <= N; ++t) forward[i][t] = forward[i][t - 1] + h * u[i][t];
+      for (int t = N - 1; t >= 0; --t) backward[i][t] = backward[i][t + 1] + h * u[i][t + 1];
+    }
+    auto regions = [&](int i, int t) {
+      const Robot& rb = s.robots[i];
+      const std::array<double, 2> start{rb.start[kX], rb.start[kY]};
+      return std::array<RoundedBox, 2>{
+          RoundedBox{start, start, forward[i][t]},
+          RoundedBox{{rb.target.lower[kX], rb.target.lower[kY]},
+                     {rb.target.upper[kX], rb.target.upper[kY]},
+                     backward[i][t]}};
+    };
+    for (int p = 0; p < np; ++p) {
+      const Pair& pr = s.pairs[p];
+      const double R = s.robots[pr.i].radius + s.robots[pr.j].radius;
+      const double reach = R + (pr.mode == PairMode::kAvoid ? pr.safe_distance : 0.0) + kReachMargin * R;
+      int first = N + 1, last = 0;
+      for (int t = 1; t <= N; ++t) {
+        const auto a = regions(pr.i, t), b = regions(pr.j, t);
+        double apart = -kInf;
+        for (const auto& ra : a)
+          for (const auto& rb : b) apart = std::max(apart, distance_bound(ra, rb));
+        if (apart <= reach) first = std::min(first, t), last = t;
+      }
+      plan.pairs[p].first = first;
+      plan.pairs[p].last = last;
+    }
+  }
+
+  // Rotation (item 4).
+  for (int i = 0; i < nr; ++i) {
+    const Robot& rb = s.robots[i];
+    bool turned = rb.start[kOmega] != 0.0;
+    for (int p = 0; p < np; ++p) {
+      const Pair& pr = s.pairs[p];
+      if ((pr.i == i || pr.j == i) && plan.pairs[p].friction && !plan.pairs[p].empty()) turned = true;
+    }
+    auto inside = [&](int c, double v) { return rb.target.lower[c] <= v && v <= rb.target.upper[c]; };
+    const bool constants_allowed = inside(kPhi, rb.start[kPhi]) && inside(kOmega, 0.0);
+    plan.rotates[i] = turned || !constants_allowed;
+  }
+  return plan;
+}
+
+}  // namespace disco
