@@ -87,6 +87,7 @@ struct SolveOptions {
   int start = 0;
   std::uint64_t seed = 1;
   std::vector<std::string> sets;
+  bool model_only = false;
 };
 
 int run_solve(const SolveOptions& o) {
@@ -97,7 +98,6 @@ int run_solve(const SolveOptions& o) {
   const Scene scene = load_scene(o.scene, scene_sets);
   set_threads(o.threads);
   const std::string out_dir = o.out.empty() ? "out/" + scene.name : o.out;
-  std::filesystem::create_directories(out_dir);
 
   {
     RobotProblem preview(scene, model_options(settings));
@@ -110,12 +110,18 @@ int run_solve(const SolveOptions& o) {
                  "(T_f <= {:.4g} s); {} threads",
                  preview.options().adaptive ? " (adaptive)" : "", size.variables, size.constraints,
                  size.complementarity_pairs, T_max, omp_get_max_threads());
+    const ModelPlan& plan = preview.plan();
+    spdlog::info("  pairs within reach at {} of {} pair-states; {} of {} robots turn",
+                 plan.pair_states(), static_cast<int>(scene.pairs.size()) * scene.steps,
+                 plan.turning_robots(), static_cast<int>(scene.robots.size()));
     if (const auto lb = preview.lower_bound(); lb && std::isfinite(*lb)) {
       spdlog::info("lower bound (robots without contact partners, each alone): {:.6f} s", *lb);
     } else {
       spdlog::info("lower bound: none (every robot can be pushed, or has no closed form)");
     }
   }
+  if (o.model_only) return 0;
+  std::filesystem::create_directories(out_dir);
   spdlog::info("{:>3} {:<11} {:>10} {:>10} {:<17} {:>9} {:>9} {:>4} {:>5} {:>7}", "#", "phase",
                "bound[s]", "T_f[s]", "status", "compl", "viol", "nlp", "iter", "sec");
   int count = 0;
@@ -168,6 +174,8 @@ int main(int argc, char** argv) {
                   "log of the start that gave a search's best")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--seed", solve.seed, "Seed of the start generator (with --start; as for search)");
+  cmd->add_flag("--model-only", solve.model_only,
+                "Print the model's size (at start 0's feasibility horizon) and exit without solving");
   cmd->add_option("--threads", solve.threads, "OpenMP threads (default: OMP_NUM_THREADS, else 1)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--settings", solve.settings, "Solver settings file")

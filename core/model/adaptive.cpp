@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <numeric>
 
 #include "core/util/check.h"
@@ -62,9 +63,14 @@ std::vector<std::vector<double>> speed_bounds(const Scene& s, double h) {
   // Per component: G^2 and the start energy e0^2.
   std::vector<double> G2(nr, 0.0), e2(nr, 0.0);
   auto force_bound = [](const Robot& rb) { return std::sqrt(double(rb.force_dims)) * rb.force_max; };
+  // M a = Fbar - mu M g cos(pi / K): the largest net push along the motion.
+  auto net_push = [&](const Robot& rb) {
+    return force_bound(rb) - rb.mu * rb.mass * s.gravity * std::cos(std::numbers::pi / rb.friction_edges);
+  };
   for (int i = 0; i < nr; ++i) {
     const Robot& rb = s.robots[i];
-    const double F = force_bound(rb);
+    const double F = net_push(rb);
+    DISCO_CHECK(F > 0, "F_max > mu M g (the parser's rule)");
     G2[comp[i]] += F * F / rb.mass;
     e2[comp[i]] += rb.mass * (rb.start[kVx] * rb.start[kVx] + rb.start[kVy] * rb.start[kVy]) +
                    rb.inertia * rb.start[kOmega] * rb.start[kOmega];
@@ -84,11 +90,21 @@ std::vector<std::vector<double>> speed_bounds(const Scene& s, double h) {
       for (int t = 0; t <= N; ++t) u[i][t] = energy[comp[i]][t] / std::sqrt(rb.mass);
       continue;
     }
-    const double a = force_bound(rb) / rb.mass, b = a + rb.mu * s.gravity;
+    const double a = net_push(rb) / rb.mass, b = (force_bound(rb) + rb.mu * rb.mass * s.gravity) / rb.mass;
     const double v0 = std::hypot(rb.start[kVx], rb.start[kVy]), vT = largest_speed(rb.target);
     for (int t = 0; t <= N; ++t) u[i][t] = std::min(v0 + t * h * a, vT + (N - t) * h * b);
   }
   return u;
+}
+
+int ModelPlan::pair_states() const {
+  int n = 0;
+  for (const PairPlan& w : pairs) n += w.empty() ? 0 : w.last - w.first + 1;
+  return n;
+}
+
+int ModelPlan::turning_robots() const {
+  return static_cast<int>(std::count(rotates.begin(), rotates.end(), true));
 }
 
 ModelPlan plan_model(const Scene& s, bool adaptive, double horizon_max) {

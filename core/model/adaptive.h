@@ -16,12 +16,13 @@
 //    (every bound below grows with h, so it holds for every T_f <= T_max).
 //    Fbar = sqrt(D_ef) F_max bounds |F| (the force box's corner).
 //    A robot without contact pairs feels only F and floor friction f, with
-//    |f| <= mu M g and f . v^{s+1} <= 0 (maximum dissipation,
-//    core/model/floor_friction.h). From M (v^{s+1} - v^s) = h (F + f)
-//    (core/model/dynamics.h):
+//    |f| <= mu M g and, by maximum dissipation on the K-gon (core/model/
+//    floor_friction.h: a sliding robot's friction sits on the vertex most
+//    opposed to v, with sum beta = mu M g), f . v^{s+1} <= -mu M g c |v^{s+1}|,
+//    c = cos(pi / K). From M (v^{s+1} - v^s) = h (F + f) (core/model/dynamics.h):
 //        |v^{s+1}|^2 = v^{s+1} . (v^s + h F / M) + (h / M) f . v^{s+1}
-//          =>  |v^{s+1}| <= |v^s| + h a,            a = Fbar / M
-//        |v^s| <= |v^{s+1}| + h b,                  b = a + mu g
+//          =>  |v^{s+1}| <= |v^s| + h a,            a = (Fbar - mu M g c) / M > 0
+//        |v^s| <= |v^{s+1}| + h b,                  b = (Fbar + mu M g) / M
 //    so |v^s| <= u(s) = min(|v^0| + s h a,  V_T + (N - s) h b), V_T the largest
 //    speed in the target velocity box (infinite if unbounded).
 //    Robots joined by contact pairs (a connected component C of the graph of
@@ -31,8 +32,9 @@
 //    N^s = d^s (core/model/nonpenetration.h); contact friction, floor friction
 //    and damping by maximum dissipation. So the energy
 //    e^2 = sum_C (M |v|^2 + I omega^2) obeys e^{s+1} <= h G + sqrt((h G)^2 + (e^s)^2),
-//    G^2 = sum_C Fbar^2 / M  (Cauchy-Schwarz on the control's power), and
-//    u(s) = e^s / sqrt(M) for each robot of C.
+//    G^2 = sum_C (M a)^2 / M  (the control's power less the floor friction's,
+//    F . v + f . v <= M a |v|, then Cauchy-Schwarz), and u(s) = e^s / sqrt(M)
+//    for each robot of C.
 // 2. Regions. With p^s = p^{s-1} + h v^s (core/model/kinematics.h), the centre
 //    at state t lies within r_f(t) = h sum_{s <= t} u(s) of its start and within
 //    r_b(t) = h sum_{s > t} u(s) of its target position box.
@@ -78,6 +80,8 @@ struct PairPlan {
 struct ModelPlan {
   std::vector<PairPlan> pairs;  // per Scene::pairs entry
   std::vector<bool> rotates;    // per robot: phi and omega are unknowns
+  int pair_states() const;      // sum of the pairs' window lengths
+  int turning_robots() const;
 };
 
 // Relative safety margin of the reach test, against the certificate's tolerances.
