@@ -16,6 +16,12 @@ TEST(SolveOutcomes, TwoRobotsWithTheSameTargetAreInfeasible) {
   EXPECT_FALSE(run.solved());
   EXPECT_EQ(run.info.status, "infeasible");
   EXPECT_EQ(run.z.size(), 0);
+  // Three feasibility attempts, the horizon doubling, each on a model built
+  // for its own horizon (the adaptive model's T_max, core/model/adaptive.h).
+  const double T0 = feasibility_horizon(*run.problem, reduction_settings(Settings::load(default_settings_path())));
+  ASSERT_EQ(run.result.solves.size(), 3u);
+  for (int k = 0; k < 3; ++k) EXPECT_DOUBLE_EQ(run.result.solves[k].bound, T0 * (1 << k));
+  EXPECT_EQ(run.problem->options().horizon_max, run.result.solves[2].bound);
 }
 
 TEST(SolveOutcomes, ForceAxisThatCannotReachTheTargetIsNotSolved) {
