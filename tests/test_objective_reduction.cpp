@@ -165,6 +165,28 @@ TEST(ObjectiveReduction, NoStepIsAskedBelowTheLowerBound) {
   for (const SolveRecord& r : result.solves) EXPECT_GE(r.bound, lower_bound) << r.phase;
 }
 
+TEST(ObjectiveReduction, NoStepIsAskedBelowTheSmallestHorizon) {
+  // A robot whose target is its start has nothing to do (lower bound 0). The model keeps
+  // h > 0 with a smallest T_f; fixed steps below it used to "succeed" down to T_f ~ 1e-20 s,
+  // and the best point then violated the model's own bound on T_f by 1e-3 (model units)
+  // while reported as solved. Now the loop stops at the smallest horizon, certified.
+  const Scene scene =
+      scenario("one_robot_axis", {"steps=10", "robots.0.target={x: 0, y: 0, vx: 0, vy: 0}"});
+  RobotProblem problem(scene);
+  ASSERT_EQ(problem.lower_bound().value(), 0.0);
+  problem.limit_horizon(kInf);
+  const double smallest = problem.horizon(problem.program().variable_lower());
+  ASSERT_GT(smallest, 0.0);
+  const ReductionResult result = reduce_plainly(problem);
+  print(result);
+  ASSERT_TRUE(result.found);
+  for (const SolveRecord& r : result.solves) EXPECT_GE(r.bound, smallest) << r.phase;
+  // Within Ipopt's absolute tolerance (1e-9 in model units) of its bound.
+  EXPECT_NEAR(result.T_best, smallest, 1e-9 * problem.units().time);
+  // Certified on the model as it is left (the horizon freed), as solve_scene certifies it.
+  EXPECT_TRUE(certify(problem.program(), result.best.z).within(1e-6, 1e-6));
+}
+
 TEST(ObjectiveReduction, ALocalOptimumEndsTheLoopOnceAProbeBelowItFails) {
   // A minimising step that converges strictly inside its bound, or a
   // `minimize` phase that converges, is a local optimum: at most one fixed
