@@ -80,7 +80,11 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
     problem.fix_horizon(T);
     const Vector z0 = guess ? guess(T) : problem.straight_line_guess(T);
     MpccResult r = solve(z0);
+    // A failure says why: Ipopt's own status (Invalid_Number_Detected: an evaluation gave
+    // NaN or Inf, which the Nlp wrapper turns into a failed callback).
     out.feasibility_detail = to_string(r.status);
+    if (r.status == MpccStatus::kFailed)
+      out.feasibility_detail += " (Ipopt: " + ipopt_status_name(r.ipopt_status) + ")";
     out.status = r.status == MpccStatus::kElasticNotTight ? MpccStatus::kInfeasible : r.status;
     const bool ok = r.solved();
     record("feasibility", T, r, ok);

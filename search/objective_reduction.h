@@ -88,7 +88,8 @@ struct SolveRecord {
 struct ReductionResult {
   bool found = false;        // a certified solution exists
   MpccStatus status = MpccStatus::kFailed;  // kSolved if found; else kInfeasible or kFailed
-  std::string feasibility_detail;           // the last feasibility solve's own status
+  std::string feasibility_detail;           // the last feasibility solve's own status; when
+                                            // kFailed with Ipopt's, "failed (Ipopt: NAME)"
   double T_best = 0.0;       // s
   MpccResult best;           // the certified solve that gave T_best
   std::vector<SolveRecord> solves;
