@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <optional>
 
 #include "core/util/check.h"
 #include "core/util/errors.h"
@@ -85,7 +84,11 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
     problem.fix_horizon(T);
     const Vector z0 = guess ? guess(T) : problem.straight_line_guess(T);
     MpccResult r = solve(z0);
+    // A failure says why: Ipopt's own status (Invalid_Number_Detected: an evaluation gave
+    // NaN or Inf, which the Nlp wrapper turns into a failed callback).
     out.feasibility_detail = to_string(r.status);
+    if (r.status == MpccStatus::kFailed)
+      out.feasibility_detail += " (Ipopt: " + ipopt_status_name(r.ipopt_status) + ")";
     out.status = r.status == MpccStatus::kElasticNotTight ? MpccStatus::kInfeasible : r.status;
     const bool ok = r.solved();
     record("feasibility", T, r, ok);
@@ -143,13 +146,17 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
   bool at_local_optimum = false;  // the best point is a converged minimisation's
   bool minimized = false;         // minimised since the last improving fixed step
   bool cut_short = false;         // an early minimisation hit minimize_iterations
-  const std::optional<double> lower_bound = problem.lower_bound();
+  // No step is asked below a valid lower bound, nor below the smallest horizon the
+  // model allows (RobotProblem keeps h > 0): a fixed step there would leave T_best
+  // outside the model's own bounds on T_f, so its point could not be certified on it.
+  problem.limit_horizon(kInf);
+  const double smallest = std::max(problem.lower_bound().value_or(0.0),
+                                   problem.horizon(problem.program().variable_lower()));
   auto out_of_time = [&] { return cfg.time_limit > 0 && elapsed() > cfg.time_limit; };
   for (int k = 0; k < cfg.max_solves; ++k) {
     if (out_of_time()) break;
-    // Never ask for less than a valid lower bound: such a step cannot succeed.
-    while (lower_bound && rate >= cfg.min_rate && (1.0 - rate) * out.T_best < *lower_bound)
-      rate *= cfg.shrink;
+    // Never ask for less than that: such a step cannot succeed.
+    while (rate >= cfg.min_rate && (1.0 - rate) * out.T_best < smallest) rate *= cfg.shrink;
     if (rate < cfg.min_rate) break;
     const double bound = (1.0 - rate) * out.T_best;
     if (fixed_steps) {

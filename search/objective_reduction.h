@@ -19,7 +19,11 @@
 //      from the best point. A certified solution with a smaller T_f becomes
 //      the best and r *= grow (at most 0.5); anything else r *= shrink. A step
 //      whose bound lies below a valid lower bound (RobotProblem::lower_bound)
-//      cannot succeed and is not tried: r shrinks instead. Stop when
+//      or below the model's smallest horizon (its lower bound on T_f, which
+//      keeps h > 0) cannot succeed and is not tried: r shrinks instead. (A
+//      fixed step below the smallest horizon once "succeeded" on a robot whose
+//      target is its start, T_f -> 1e-20 s, and left a best point that
+//      violates the model's bound by 1e-3 reported as solved.) Stop when
 //      r < min_rate, after max_solves reduction solves or at the time limit.
 //      Steps first minimise T_f under the bound with at most step_iterations
 //      Ipopt iterations. The first time such a step does not converge, the
@@ -87,7 +91,8 @@ struct SolveRecord {
 struct ReductionResult {
   bool found = false;        // a certified solution exists
   MpccStatus status = MpccStatus::kFailed;  // kSolved if found; else kInfeasible or kFailed
-  std::string feasibility_detail;           // the last feasibility solve's own status
+  std::string feasibility_detail;           // the last feasibility solve's own status; when
+                                            // kFailed with Ipopt's, "failed (Ipopt: NAME)"
   double T_best = 0.0;       // s
   MpccResult best;           // the certified solve that gave T_best
   std::vector<SolveRecord> solves;

@@ -27,7 +27,8 @@
 namespace disco {
 
 enum class GuessKind {
-  kStraight,   // smoothstep straight lines (RobotProblem::straight_line_guess)
+  kStraight,   // smoothstep straight lines (RobotProblem::straight_line_guess); a robot too
+               // weak for the smoothstep moves on its own bang-bang timing (start.cpp)
   kPerturbed,  // straight lines with random lateral and along-path perturbations
   kDetour,     // robots whose straight paths cross pass each other on one side
   kPerturbedFeasible,  // straight lines, then the feasible point re-timed and re-solved

@@ -236,6 +236,58 @@ TEST(IpoptSolverSolve, NanAtTheStartIsANonConvergedStatusNotACrash) {
   EXPECT_EQ(r.point.z_lo.size(), 1);
 }
 
+// f = sqrt(1 + (x - 1)^2), minimum at x = 1, but NaN for x > 5 (say, outside the domain
+// of a model). From x = -3 the Newton step (exact Hessian 1/s^3) lands at x = 65; every
+// callback at such a point returns NaN, which the wrapper turns into `false`.
+class NanPastFive : public Nlp {
+ public:
+  NanPastFive() {
+    z_lo_ = Vector::Constant(1, -kInf);
+    z_hi_ = Vector::Constant(1, kInf);
+    hess_.add(0, 0);
+  }
+  mutable int nan_evaluations = 0;
+
+ private:
+  double nan_past_five(double x, double v) const {
+    if (x <= 5.0) return v;
+    ++nan_evaluations;
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  bool do_objective(const ConstVectorRef& x, double& f) const override {
+    f = nan_past_five(x[0], std::sqrt(1 + (x[0] - 1) * (x[0] - 1)));
+    return true;
+  }
+  bool do_gradient(const ConstVectorRef& x, VectorRef g) const override {
+    g[0] = nan_past_five(x[0], (x[0] - 1) / std::sqrt(1 + (x[0] - 1) * (x[0] - 1)));
+    return true;
+  }
+  bool do_constraints(const ConstVectorRef&, VectorRef) const override { return true; }
+  bool do_jacobian(const ConstVectorRef&, VectorRef) const override { return true; }
+  bool do_hessian(const ConstVectorRef& x, double s, const ConstVectorRef&,
+                  VectorRef v) const override {
+    v[0] = nan_past_five(x[0], s * std::pow(1 + (x[0] - 1) * (x[0] - 1), -1.5));
+    return true;
+  }
+};
+
+TEST(IpoptSolverSolve, NanInsideTheSolveIsCaughtAndTheSolveGoesOn) {
+  const NanPastFive nlp;
+  double f = 0.0;
+  ASSERT_FALSE(nlp.objective(Vector::Constant(1, 65.0), f));  // the callback says no
+  ASSERT_TRUE(nlp.objective(Vector::Constant(1, -3.0), f));
+  nlp.nan_evaluations = 0;
+  IpoptSolver solver(disco_yaml_ipopt_options());
+  NlpPoint start;
+  start.z = Vector::Constant(1, -3.0);
+  const NlpResult r = solver.solve(nlp, start);
+  // Ipopt met NaN (a failed callback) and cut its step back instead of stopping.
+  EXPECT_GT(nlp.nan_evaluations, 0);
+  ASSERT_TRUE(r.converged()) << ipopt_status_name(r.ipopt_status);
+  EXPECT_NEAR(r.point.z[0], 1.0, 1e-6);
+  EXPECT_NEAR(r.objective, 1.0, 1e-12);
+}
+
 // The Rosenbrock function with a slow gradient (10 ms per call).
 class SlowRosenbrock : public Nlp {
  public:

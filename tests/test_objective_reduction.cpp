@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -135,13 +136,18 @@ TEST(ObjectiveReduction, StartZeroIsBitIdenticalToDiscoSolve) {
 
 // Runs the settings file's schedule (first rate `rate` if > 0) on `problem`
 // from the straight-line guess.
-ReductionResult reduce_plainly(RobotProblem& problem, double rate = 0.0) {
-  const Settings settings = Settings::load(default_settings_path());
-  IpoptSolver ipopt(ipopt_options(settings));
-  ElasticSolver solver(ipopt, elastic_settings(settings));
+// The solvers and schedule of configs/disco.yaml.
+struct DefaultSolvers {
+  Settings settings = Settings::load(default_settings_path());
+  IpoptSolver ipopt{ipopt_options(settings)};
+  ElasticSolver solver{ipopt, elastic_settings(settings)};
   ReductionSettings schedule = reduction_settings(settings);
-  if (rate > 0) schedule.rate = rate;
-  return reduce_objective(problem, solver, schedule);
+};
+
+ReductionResult reduce_plainly(RobotProblem& problem, double rate = 0.0) {
+  DefaultSolvers d;
+  if (rate > 0) d.schedule.rate = rate;
+  return reduce_objective(problem, d.solver, d.schedule);
 }
 
 void print(const ReductionResult& result) {
@@ -163,6 +169,63 @@ TEST(ObjectiveReduction, NoStepIsAskedBelowTheLowerBound) {
   EXPECT_GE(result.T_best, lower_bound);
   EXPECT_LE(result.T_best, lower_bound * (1 + 1e-2));
   for (const SolveRecord& r : result.solves) EXPECT_GE(r.bound, lower_bound) << r.phase;
+}
+
+TEST(ObjectiveReduction, NoStepIsAskedBelowTheSmallestHorizon) {
+  // A robot whose target is its start has nothing to do (lower bound 0). The model keeps
+  // h > 0 with a smallest T_f; fixed steps below it used to "succeed" down to T_f ~ 1e-20 s,
+  // and the best point then violated the model's own bound on T_f by 1e-3 (model units)
+  // while reported as solved. Now the loop stops at the smallest horizon, certified.
+  const Scene scene =
+      scenario("one_robot_axis", {"steps=10", "robots.0.target={x: 0, y: 0, vx: 0, vy: 0}"});
+  RobotProblem problem(scene);
+  ASSERT_EQ(problem.lower_bound().value(), 0.0);
+  problem.limit_horizon(kInf);
+  const double smallest = problem.horizon(problem.program().variable_lower());
+  ASSERT_GT(smallest, 0.0);
+  const ReductionResult result = reduce_plainly(problem);
+  print(result);
+  ASSERT_TRUE(result.found);
+  for (const SolveRecord& r : result.solves) EXPECT_GE(r.bound, smallest) << r.phase;
+  // Within Ipopt's absolute tolerance (1e-9 in model units) of its bound.
+  EXPECT_NEAR(result.T_best, smallest, 1e-9 * problem.units().time);
+  // Certified on the model as it is left (the horizon freed), as solve_scene certifies it.
+  EXPECT_TRUE(certify(problem.program(), result.best.z).within(1e-6, 1e-6));
+}
+
+TEST(ObjectiveReduction, AnEvaluationFailureIsReportedAndTheNextHorizonIsTried) {
+  // A guess with a NaN makes every evaluation at the start point fail: the wrapper
+  // returns false, Ipopt stops with Invalid_Number_Detected. The feasibility phase records
+  // that solve as failed, says why, and goes on with the next horizon.
+  RobotProblem problem(scenario("one_robot_axis", {"steps=10"}));
+  DefaultSolvers d;
+  auto poisoned = [&](double seconds) {
+    Vector z = problem.straight_line_guess(seconds);
+    z[z.size() / 2] = std::numeric_limits<double>::quiet_NaN();
+    return z;
+  };
+  // Always poisoned: three failed horizons, and the detail names Ipopt's status.
+  const ReductionResult never = reduce_objective(problem, d.solver, d.schedule, poisoned);
+  print(never);
+  EXPECT_FALSE(never.found);
+  EXPECT_EQ(never.status, MpccStatus::kFailed);
+  EXPECT_EQ(never.feasibility_detail, "failed (Ipopt: Invalid_Number_Detected)");
+  ASSERT_EQ(never.solves.size(), 3u);
+  for (const SolveRecord& r : never.solves) EXPECT_EQ(r.status, MpccStatus::kFailed);
+  // Poisoned at the first horizon only: the second is solved and the reduction goes on.
+  int calls = 0;
+  const ReductionResult later = reduce_objective(problem, d.solver, d.schedule, [&](double seconds) {
+    return ++calls == 1 ? poisoned(seconds) : problem.straight_line_guess(seconds);
+  });
+  print(later);
+  ASSERT_TRUE(later.found) << later.feasibility_detail;
+  EXPECT_EQ(later.solves[0].status, MpccStatus::kFailed);
+  EXPECT_EQ(ipopt_status_name(later.solves[0].ipopt_status), "Invalid_Number_Detected");
+  EXPECT_EQ(later.solves[1].phase, "feasibility");
+  EXPECT_TRUE(later.solves[1].improved);
+  EXPECT_NEAR(later.solves[1].bound, 2.0 * later.solves[0].bound, 1e-12 * later.solves[0].bound);
+  EXPECT_GT(later.solves.size(), 2u);  // the reduction ran from there
+  EXPECT_TRUE(later.best.certificate.within(1e-6, 1e-6));
 }
 
 TEST(ObjectiveReduction, ALocalOptimumEndsTheLoopOnceAProbeBelowItFails) {
@@ -204,14 +267,10 @@ TEST(ObjectiveReduction, ACappedEarlyMinimisationHandsBackToTheFixedSteps) {
   // reduction.minimize_iterations caps the minimisation after the first failed
   // fixed step; cut short, it leaves the best point as it was, the fixed steps
   // go on, and the loop minimises again, uncapped, at its end.
-  const Scene scene = scenario("two_robots_swap_avoid", {"steps=20"});
-  const Settings settings = Settings::load(default_settings_path());
-  RobotProblem problem(scene);
-  IpoptSolver ipopt(ipopt_options(settings));
-  ElasticSolver solver(ipopt, elastic_settings(settings));
-  ReductionSettings schedule = reduction_settings(settings);
-  schedule.minimize_iterations = 3;
-  const ReductionResult result = reduce_objective(problem, solver, schedule);
+  RobotProblem problem(scenario("two_robots_swap_avoid", {"steps=20"}));
+  DefaultSolvers d;
+  d.schedule.minimize_iterations = 3;
+  const ReductionResult result = reduce_objective(problem, d.solver, d.schedule);
   print(result);
   ASSERT_TRUE(result.found);
   std::vector<size_t> minimizations;

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <set>
 #include <string>
@@ -16,6 +17,7 @@
 
 #include "core/config/settings.h"
 #include "core/config/solver_settings.h"
+#include "core/model/lower_bound.h"
 #include "core/model/robot_problem.h"
 #include "core/model/scene_yaml.h"
 #include "search/objective_reduction.h"
@@ -187,6 +189,66 @@ TEST(Start, IndexZeroIsTheBaseSettingsAndTheStraightGuess) {
               "start 0: straight, horizon x1.70, rate 0.040, grow 1.30, shrink 0.60, min rate 0.0030, "
               "zeta 3");
   }
+}
+
+// The horizons of the feasibility phase of `start` (objective_reduction.h, step 1).
+std::vector<double> feasibility_horizons(const RobotProblem& rp, const StartSpec& start) {
+  double T = start.schedule.horizon_min;
+  if (const auto ref = rp.reference_time()) T = std::max(T, start.schedule.horizon_factor * *ref);
+  return {T, 2 * T, 4 * T};
+}
+
+// Can some robot not follow the smoothstep at horizon T, though some timing would do?
+// Its largest acceleration 6 L / T^2 beats the robot's a_1 = (push - friction) / M, and T
+// is at least the robot's minimum time (both from the scene, core/model/lower_bound.h).
+bool some_robot_too_weak_for_the_smoothstep(const Scene& scene, double T) {
+  for (const Robot& rb : scene.robots) {
+    const auto m = robot_straight_move(rb, scene.gravity);
+    if (!m || m->distance == 0.0) continue;
+    const double a1 = (m->push - m->friction) / rb.mass, a2 = (m->push + m->friction) / rb.mass;
+    if (a1 > 0 && 6 * m->distance / (T * T) > a1 &&
+        T >= straight_move_time(m->distance, a1, a2, m->stop_at_end))
+      return true;
+  }
+  return false;
+}
+
+TEST(Start, TheStraightGuessFollowsWhatTheRobotsCanDo) {
+  const Settings settings = Settings::load(default_settings_path());
+  const std::string dir = std::string(DISCO_SOURCE_DIR) + "/configs/";
+  int changed = 0;
+  for (const char* name :
+       {"scenarios/one_robot_axis", "scenarios/one_robot_diagonal", "scenarios/two_robots_swap_avoid",
+        "scenarios/three_robots_contact", "scenarios/paper/A1", "scenarios/paper/A2",
+        "scenarios/paper/A3", "scenarios/paper/A4", "scenarios/paper/B1", "scenarios/paper/B2",
+        "scenarios/paper/B3", "stress/weak_force"}) {
+    const Scene scene = load_scene(dir + name + ".yaml");
+    RobotProblem rp(scene);
+    const StartSpec s =
+        make_start(scene, 1, 0, reduction_settings(settings), elastic_settings(settings));
+    for (double T : feasibility_horizons(rp, s)) {
+      SCOPED_TRACE(std::string(name) + " at " + std::to_string(T) + " s");
+      const Vector guess = make_guess(rp, s, T), smooth = rp.straight_line_guess(T);
+      if (!some_robot_too_weak_for_the_smoothstep(scene, T)) {
+        EXPECT_TRUE(bitwise_equal(guess, smooth));  // as before
+        continue;
+      }
+      ++changed;
+      EXPECT_FALSE(bitwise_equal(guess, smooth));
+      if (scene.robots.size() != 1) continue;
+      // Alone, a robot on its own timing satisfies the whole model (kinematics, dynamics,
+      // friction, target); on the smoothstep, clipped forces break the momentum rows.
+      rp.fix_horizon(T);
+      const double own = certify(rp.program(), guess).max_violation;
+      const double smoothstep = certify(rp.program(), smooth).max_violation;
+      std::printf("%s at %.3f s: violation %.1e (own timing), %.1e (smoothstep)\n", name, T, own,
+                  smoothstep);
+      EXPECT_LE(own, 1e-9);
+      EXPECT_GT(smoothstep, 1e-3);
+    }
+  }
+  // weak_force (F_max = 1.001 mu M g) and the paper's robots (push < 2 friction) at least.
+  EXPECT_GE(changed, 2);
 }
 
 TEST(Start, ParametersStayInTheirRangesAndOtherFieldsAreKept) {

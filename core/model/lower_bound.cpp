@@ -24,7 +24,7 @@ bool straight_move_is_optimal(const Robot& rb, double ux, double uy) {
   return std::abs(std::abs(ux) - std::abs(uy)) < kTol;
 }
 
-std::optional<double> robot_straight_time(const Robot& rb, double gravity) {
+std::optional<StraightMove> robot_straight_move(const Robot& rb, double gravity) {
   const auto& s = rb.start;
   if (s[kVx] != 0.0 || s[kVy] != 0.0) return std::nullopt;
   const auto& lo = rb.target.lower;
@@ -33,14 +33,16 @@ std::optional<double> robot_straight_time(const Robot& rb, double gravity) {
   const bool free = lo[kVx] == -kInf && hi[kVx] == kInf && lo[kVy] == -kInf && hi[kVy] == kInf;
   if (!rest && !free) return std::nullopt;
 
+  StraightMove m;
+  m.stop_at_end = rest;
   const double dx = std::clamp(s[kX], lo[kX], hi[kX]) - s[kX];
   const double dy = std::clamp(s[kY], lo[kY], hi[kY]) - s[kY];
-  const double d = std::hypot(dx, dy);
-  if (d == 0.0) return 0.0;
-  const double ux = dx / d, uy = dy / d;
-  const double push = rb.force_dims == 2
-                          ? rb.force_max * (std::abs(ux) + std::abs(uy))
-                          : rb.force_max * std::abs(rb.force_axis[0] * ux + rb.force_axis[1] * uy);
+  m.distance = std::hypot(dx, dy);
+  if (m.distance == 0.0) return m;
+  const double ux = dx / m.distance, uy = dy / m.distance;
+  m.push = rb.force_dims == 2
+               ? rb.force_max * (std::abs(ux) + std::abs(uy))
+               : rb.force_max * std::abs(rb.force_axis[0] * ux + rb.force_axis[1] * uy);
   // Moving along u, maximum dissipation picks the vertex minimising d_k . u:
   // the friction against the motion is mu M g max_k (-d_k . u). (For even K
   // this equals max_k d_k . u; for odd K it does not.)
@@ -49,11 +51,19 @@ std::optional<double> robot_straight_time(const Robot& rb, double gravity) {
     const double angle = 2.0 * std::numbers::pi * k / rb.friction_edges;
     support = std::max(support, -(std::cos(angle) * ux + std::sin(angle) * uy));
   }
-  const double friction = rb.mu * rb.mass * gravity * support;
-  const double a2 = (push + friction) / rb.mass;
-  if (straight_move_is_optimal(rb, ux, uy))
-    return straight_move_time(d, (push - friction) / rb.mass, a2, rest);
-  return straight_move_time(d, push / rb.mass, a2, rest);  // provable relaxation
+  m.friction = rb.mu * rb.mass * gravity * support;
+  m.optimal = straight_move_is_optimal(rb, ux, uy);
+  return m;
+}
+
+std::optional<double> robot_straight_time(const Robot& rb, double gravity) {
+  const auto m = robot_straight_move(rb, gravity);
+  if (!m) return std::nullopt;
+  if (m->distance == 0.0) return 0.0;
+  const double a2 = (m->push + m->friction) / rb.mass;
+  // Off the optimal directions, the provable relaxation: no friction while speeding up.
+  const double a1 = m->optimal ? (m->push - m->friction) / rb.mass : m->push / rb.mass;
+  return straight_move_time(m->distance, a1, a2, m->stop_at_end);
 }
 
 std::optional<double> scene_lower_bound(const Scene& scene) {

@@ -54,6 +54,20 @@ double straight_move_time(double distance, double accel, double brake, bool stop
 // Is the straight bang-bang move the robot's optimum along unit direction u?
 bool straight_move_is_optimal(const Robot& robot, double ux, double uy);
 
+// A robot's straight move, from rest to the nearest point of its target position box: its
+// length, the largest push along it and the floor friction against it (both N, as above),
+// whether it ends at rest, and whether it is the robot's optimum (straight_move_is_optimal).
+// Absent (nullopt) exactly when robot_straight_time is. Its own acceleration is
+// (push - friction) / M, its braking (push + friction) / M.
+struct StraightMove {
+  double distance = 0.0;  // m
+  double push = 0.0;      // N
+  double friction = 0.0;  // N
+  bool stop_at_end = true;
+  bool optimal = false;
+};
+std::optional<StraightMove> robot_straight_move(const Robot& robot, double gravity);
+
 std::optional<double> robot_straight_time(const Robot& robot, double gravity);
 std::optional<double> scene_lower_bound(const Scene& scene);
 std::optional<double> scene_reference_time(const Scene& scene);
