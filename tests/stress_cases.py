@@ -62,13 +62,16 @@ CASES = {
     "twelve_robots": {"outcome": "solved", "why": "12 robots, 66 avoid pairs, clear paths: slowest alone"},
     "mass_ratio_1000": {"outcome": "solved", "why": "1 kg and 1000 kg pass 0.01 m apart: slowest alone"},
     "radius_ratio_100": {"outcome": "solved", "why": "R 0.05 passes R 5.0 at rest: small alone"},
-    "weak_force": {"outcome": "solved", "why": "F_max = 1.001 mu M g: a_1 = 0.00196 m/s^2"},
+    # Start 0 alone may stop on a stop-and-go local optimum (which one it reaches changes
+    # with roundoff: the full model at 32.33 s, the adaptive one at 33.17 s): its T_f must
+    # not beat the optimum, and a search of `starts` starts must reach it.
+    "weak_force": {"outcome": "solved", "why": "F_max = 1.001 mu M g: a_1 = 0.00196 m/s^2", "starts": 4},
     "unreachable_target": {"outcome": "infeasible", "why": "phi target: a lone robot has no torque"},
     "off_axis_target": {"outcome": "infeasible", "why": "D_ef 1 along x, target off the axis"},
     "overlapping_targets": {"outcome": "infeasible", "why": "avoid pair, targets 0.8 m apart < R+R+d_s"},
     "too_weak": {"outcome": "input_error", "key": "robots[0].force_max", "message": "too weak to move",
                  "why": "F_max <= mu M g: rejected by the parser"},
-    "overflow": {"outcome": "failed", "why": "pair 1e200 m apart: the gap row overflows (Inf)"},
+    "overflow": {"outcome": "failed", "why": "a swap across 1e160 m: the gap row overflows (Inf)"},
 }
 SCALE_GROUP = ("scale_m", "scale_mm", "scale_mass1000")  # same T_f (s) within REL_TOL
 
@@ -331,6 +334,10 @@ def assess(name, returncode, stderr, solution_path):
         add(v is not None and c is not None and v <= viol_tol and c <= compl_tol,
             f"certificate: violation {v} <= {viol_tol}, complementarity {c} <= {compl_tol}")
         expected, T = expected_T(name), doc["T_f"]
+        if "starts" in case:  # the search's best is checked by the caller
+            add(T is not None and T >= expected * (1 - REL_TOL),
+                f"T_f {T} not below the optimum {expected:.12g} ({case['why']})")
+            return checks, doc
         diff = None if T is None else abs(T - expected) / expected
         add(diff is not None and diff <= REL_TOL,
             f"T_f {T} = expected {expected:.12g} ({case['why']}), relative "

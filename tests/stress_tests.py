@@ -9,7 +9,9 @@ NAME:
              outcome: the exit status (0 solved, 3 without a solution, 2 bad input); the
              status; no NaN or Inf anywhere in solution.json; when solved, the certificate
              within configs/disco.yaml's elastic.violation_tolerance and
-             complementarity_tolerance and T_f equal to the expected time (relative 1e-6);
+             complementarity_tolerance and T_f equal to the expected time (relative 1e-6; for
+             a case with "starts", T_f not below it, and the best of a `disco search` with
+             that many starts equal to it);
              without a solution, T_f, h and every trajectory null; for a failed solve, the
              detail naming Ipopt's status; for bad input, the message naming the file, the
              line and the key, and no solution written.
@@ -52,6 +54,18 @@ def check_scene(name):
     checks, _ = sc.assess(name, r.returncode, r.stderr, os.path.join(out, "solution.json"))
     for ok, what in checks:
         check(ok, what)
+    starts = sc.CASES[name].get("starts")
+    if starts:  # the optimum is the best of a search (one process)
+        search = os.path.join(WORK, name + "_search")
+        shutil.rmtree(search, ignore_errors=True)
+        r = subprocess.run([DISCO, "search", sc.scene_path(name), "--starts", str(starts), "--seed", "1",
+                            "--out", search], env=ENV)
+        check(r.returncode == 0, f"{name}: disco search --starts {starts} exits 0 (got {r.returncode})")
+        with open(os.path.join(search, "best.json")) as f:
+            T = json.load(f)["scenes"][name]["T_f"]
+        expected = sc.expected_T(name)
+        check(T is not None and rel(T, expected) <= sc.REL_TOL,
+              f"{name}: the best of {starts} starts {T} = expected {expected:.12g} (relative <= {sc.REL_TOL})")
 
 
 def check_scale():

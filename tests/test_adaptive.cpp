@@ -151,6 +151,14 @@ TEST(AdaptiveModel, PairsGetUnknownsOnlyWhereTheyCanMeet) {
   EXPECT_GT(w.first, 1);
   EXPECT_LT(w.last, swap.steps);
   EXPECT_EQ(count_unknowns(rp.layout(), 0), w.last - w.first + 1);
+  // Far from the origin the reach test must neither overflow nor lose the gap
+  // to rounding: a swap across 1e160 m still has its crossing window (it was
+  // once pruned: |d|^2 overflowed to Inf).
+  const Scene huge = load_scene(std::string(DISCO_SOURCE_DIR) + "/configs/stress/overflow.yaml");
+  RobotProblem far_rp(huge, ModelOptions{true, kInf});
+  far_rp.set_horizon_max(*far_rp.reference_time() * 1.5);
+  EXPECT_FALSE(far_rp.plan().pairs[0].empty());
+  EXPECT_GT(far_rp.plan().pairs[0].first, 1);
   // No window at all without a horizon bound.
   EXPECT_EQ(RobotProblem(swap, ModelOptions{true, kInf}).plan().pairs[0].first, 1);
 }

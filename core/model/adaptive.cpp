@@ -18,15 +18,20 @@ struct RoundedBox {
   double radius;
 };
 
-// A lower bound on the distance between a point of `a` and a point of `b`.
+// A lower bound on the distance between a point of `a` and a point of `b`,
+// less the rounding error of computing it: kRoundoff times the magnitudes
+// involved (coordinates of 1e160 m leave no digits for a 1 m gap).
+constexpr double kRoundoff = 1e-9;
 double distance_bound(const RoundedBox& a, const RoundedBox& b) {
-  double squared = 0.0;
+  std::array<double, 2> gap;
+  double scale = a.radius + b.radius;
   for (int k = 0; k < 2; ++k) {
-    const double gap = std::max({0.0, b.lo[k] - a.hi[k], a.lo[k] - b.hi[k]});
-    if (std::isnan(gap)) return -kInf;  // inf - inf: unbounded on both sides
-    squared += gap * gap;
+    gap[k] = std::max({0.0, b.lo[k] - a.hi[k], a.lo[k] - b.hi[k]});
+    if (std::isnan(gap[k])) return -kInf;  // inf - inf: unbounded on both sides
+    for (double v : {a.lo[k], a.hi[k], b.lo[k], b.hi[k]})
+      if (std::isfinite(v)) scale = std::max(scale, std::abs(v));
   }
-  return std::sqrt(squared) - a.radius - b.radius;
+  return std::hypot(gap[0], gap[1]) - a.radius - b.radius - kRoundoff * scale;  // hypot: no overflow
 }
 
 // The largest speed in a target velocity box (infinite if unbounded).
@@ -149,7 +154,7 @@ ModelPlan plan_model(const Scene& s, bool adaptive, double horizon_max) {
         double apart = -kInf;
         for (const auto& ra : a)
           for (const auto& rb : b) apart = std::max(apart, distance_bound(ra, rb));
-        if (apart <= reach) first = std::min(first, t), last = t;
+        if (!(apart > reach)) first = std::min(first, t), last = t;  // NaN: keep
       }
       plan.pairs[p].first = first;
       plan.pairs[p].last = last;
