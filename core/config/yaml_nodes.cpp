@@ -27,8 +27,10 @@ std::string describe(const YAML::Node& n) {
   switch (n.Type()) {
     case YAML::NodeType::Null:
       return "null";
-    case YAML::NodeType::Scalar:
-      return n.Tag() == "!" ? "the quoted string \"" + n.Scalar() + "\"" : "'" + n.Scalar() + "'";
+    case YAML::NodeType::Scalar: {
+      const std::string text = printable(n.Scalar(), kEchoLimit);
+      return n.Tag() == "!" ? "the quoted string \"" + text + "\"" : "'" + text + "'";
+    }
     case YAML::NodeType::Sequence:
       return "a sequence";
     case YAML::NodeType::Map:
@@ -94,7 +96,8 @@ Override parse_override(const std::string& assignment, const std::string& exampl
   try {
     o.value = YAML::Load(o.text);
   } catch (const YAML::Exception& e) {
-    override_fail(o.key, "cannot parse the value '" + o.text + "' as YAML: " + e.msg);
+    override_fail(o.key, "cannot parse the value '" + printable(o.text, kEchoLimit) +
+                             "' as YAML: " + e.msg);
   }
   return o;
 }

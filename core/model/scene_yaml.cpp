@@ -43,6 +43,9 @@ std::string show(double v) {
   return buf;
 }
 
+// A name from the input, quoted for a message (long ones are cut; see errors.h).
+std::string quote(const std::string& name) { return "'" + printable(name, kEchoLimit) + "'"; }
+
 std::string join(const std::vector<std::string>& items) {
   std::string out;
   for (const std::string& s : items) out += (out.empty() ? "" : ", ") + s;
@@ -118,14 +121,14 @@ void apply_override(YAML::Node& root, const std::string& assignment,
       cur.reset(next);
     } else if (cur.IsSequence()) {
       if (!is_index(part)) {
-        override_fail(
-            key, "'" + prefix + "' is a sequence: '" + part + "' must be an index (0, 1, ...)");
+        override_fail(key, quote(prefix) + " is a sequence: " + quote(part) +
+                               " must be an index (0, 1, ...)");
       }
       const std::size_t index = std::stoul(part);
       const std::size_t size = cur.size();
       path = item(path, index);
       if (index > size || (index == size && !last)) {
-        override_fail(key, "index " + part + " is out of range: '" + prefix + "' has " +
+        override_fail(key, "index " + part + " is out of range: " + quote(prefix) + " has " +
                                std::to_string(size) + " entries");
       }
       if (last) {
@@ -144,7 +147,7 @@ void apply_override(YAML::Node& root, const std::string& assignment,
       const YAML::Node next = cur[index];
       cur.reset(next);
     } else {
-      override_fail(key, "'" + prefix + "' is a single value; it has no entry '" + part + "'");
+      override_fail(key, quote(prefix) + " is a single value; it has no entry " + quote(part));
     }
     prefix = here;
   }
@@ -180,7 +183,7 @@ class Doc {
     for (const OverrideRecord& r : records_) {
       if (r.path.size() > path.size() && r.path.compare(0, path.size(), path) == 0 &&
           (r.path[path.size()] == '.' || r.path[path.size()] == '[')) {
-        below += (below.empty() ? "" : ", ") + r.key;
+        below += (below.empty() ? "" : ", ") + printable(r.key, kEchoLimit);
       }
     }
     if (!below.empty()) below = " (with --set " + below + ")";
@@ -303,7 +306,9 @@ void set_field(const Doc& doc, const std::string& key, const YAML::Node& n, cons
     r.force_max = doc.positive(n, path);
   } else if (key == "force_dims") {
     const int dims = doc.integer(n, path);
-    if (dims != 1 && dims != 2) doc.fail(n, path, "must be 1 or 2 (got " + n.Scalar() + ")");
+    if (dims != 1 && dims != 2) {
+      doc.fail(n, path, "must be 1 or 2 (got " + std::to_string(dims) + ")");
+    }
     r.force_dims = dims;
   } else if (key == "force_axis") {
     if (!n.IsSequence() || n.size() != 2) {
@@ -390,7 +395,7 @@ std::vector<Robot> read_robots(const Doc& doc, const YAML::Node& seq, const YAML
     r.name = doc.name(name_it->second, child(path, "name"));
     if (const auto dup = index_of.find(r.name); dup != index_of.end()) {
       doc.fail(name_it->second, child(path, "name"),
-               "duplicate robot name '" + r.name + "' (already used by " +
+               "duplicate robot name " + quote(r.name) + " (already used by " +
                    item("robots", dup->second) + ")");
     }
     index_of[r.name] = i;
@@ -419,7 +424,7 @@ std::vector<Robot> read_robots(const Doc& doc, const YAML::Node& seq, const YAML
     if (!(r.force_max > resistance)) {
       const Origin& o = d.origin.at("force_max");
       doc.fail(o.node, o.path,
-               "robot '" + r.name + "' is too weak to move: force_max = " + show(r.force_max) +
+               "robot " + quote(r.name) + " is too weak to move: force_max = " + show(r.force_max) +
                    " N must exceed mu * mass * gravity = " + show(r.mu) + " * " + show(r.mass) +
                    " * " + show(gravity) + " = " + show(resistance) + " N");
     }
@@ -484,16 +489,17 @@ std::vector<Pair> read_pairs(const Doc& doc, const YAML::Node& n,
       for (int r = 0; r < count; ++r) {
         if (robots[r].name == nm) idx[e] = r;
       }
-      if (idx[e] < 0) doc.fail(names[e], item(rpath, e), "unknown robot name '" + nm + "'");
+      if (idx[e] < 0) doc.fail(names[e], item(rpath, e), "unknown robot name " + quote(nm));
     }
     if (idx[0] == idx[1]) {
       doc.fail(names, rpath,
-               "a pair needs two distinct robots (got '" + robots[idx[0]].name + "' twice)");
+               "a pair needs two distinct robots (got " + quote(robots[idx[0]].name) + " twice)");
     }
     const std::pair<int, int> key{std::min(idx[0], idx[1]), std::max(idx[0], idx[1])};
     if (const auto s = seen.find(key); s != seen.end()) {
       doc.fail(names, rpath,
-               "the pair (" + robots[key.first].name + ", " + robots[key.second].name +
+               "the pair (" + printable(robots[key.first].name, kEchoLimit) + ", " +
+                   printable(robots[key.second].name, kEchoLimit) +
                    ") is already set by " + s->second);
     }
     seen[key] = path;
@@ -519,7 +525,7 @@ void check_start_clearance(const Doc& doc, const YAML::Node& robots_node, const 
     const double touch = a.radius + b.radius;
     const std::string path = child(item("robots", p.j), "start");
     const YAML::Node at = robots_node[p.j]["start"];
-    const std::string names = "robots '" + a.name + "' and '" + b.name + "'";
+    const std::string names = "robots " + quote(a.name) + " and " + quote(b.name);
     if (dist < touch * (1 - kTouchTolerance)) {
       doc.fail(at, path,
                names + " overlap at the start: centre distance " + show(dist) +
