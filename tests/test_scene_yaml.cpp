@@ -515,5 +515,13 @@ TEST(SceneYaml, LongEchoesAreCut) {
   for (const std::string* m : {&msg, &key, &value_set}) EXPECT_LT(m->size(), 500u) << *m;
 }
 
+TEST(SceneYaml, OverridesBelowAKeyAreNamedOnce) {
+  // pairs.extra.b.c=1 creates pairs.extra.b and sets its c: one override, named once.
+  expect_error(with("  mode: avoid", "  mode: avoid\n  extra: {a: 1}"), 22, "pairs.extra",
+               "unknown key (allowed: mode, safe_distance, mu, overrides) "
+               "(with --set pairs.extra.b.c, pairs.extra.d)",
+               {"pairs.extra.b.c=1", "pairs.extra.d=2"});
+}
+
 }  // namespace
 }  // namespace disco

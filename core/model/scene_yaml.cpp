@@ -82,11 +82,13 @@ bool is_name(const std::string& s) {
   return true;
 }
 
-// A node (or a mapping key) that came from an override: its indexed path and the key as
-// given on the command line. Everything at or below `path` is reported as "--set".
+// A node (or a mapping key) that came from an override: its indexed path, its key as
+// spelt on the command line, and the KEY of the override that set or created it. Everything
+// at or below `path` is reported as "--set".
 struct OverrideRecord {
   std::string path;
   std::string key;
+  std::string from;
 };
 
 // Applies one "KEY=VALUE" override to `root` (a mapping) and records what it touched.
@@ -109,13 +111,13 @@ void apply_override(YAML::Node& root, const std::string& assignment,
       path = child(path, part);
       if (last) {
         cur[part] = value;
-        records.push_back({path, key});
+        records.push_back({path, key, key});
         return;
       }
       const YAML::Node existing = ccur[part];
       if (!existing.IsDefined() || existing.IsNull()) {
         cur[part] = YAML::Node(YAML::NodeType::Map);
-        records.push_back({path, here});
+        records.push_back({path, here, key});
       }
       const YAML::Node next = cur[part];
       cur.reset(next);
@@ -136,13 +138,13 @@ void apply_override(YAML::Node& root, const std::string& assignment,
           cur.push_back(value);
         else
           cur[index] = value;
-        records.push_back({path, key});
+        records.push_back({path, key, key});
         return;
       }
       const YAML::Node existing = ccur[index];
       if (existing.IsNull()) {
         cur[index] = YAML::Node(YAML::NodeType::Map);
-        records.push_back({path, here});
+        records.push_back({path, here, key});
       }
       const YAML::Node next = cur[index];
       cur.reset(next);
@@ -177,13 +179,16 @@ class Doc {
         at.IsDefined() && at.IsNull() && it != null_lines_.end()) {
       line = it->second;
     }
-    // Values below `path` that came from overrides (e.g. robots.1.start.x for a start
-    // overlap reported at robots[1].start) are named too.
+    // The overrides that set values below `path` (e.g. robots.1.start.x for a start
+    // overlap reported at robots[1].start) are named too, each once.
     std::string below;
+    std::vector<std::string> named;
     for (const OverrideRecord& r : records_) {
       if (r.path.size() > path.size() && r.path.compare(0, path.size(), path) == 0 &&
-          (r.path[path.size()] == '.' || r.path[path.size()] == '[')) {
-        below += (below.empty() ? "" : ", ") + printable(r.key, kEchoLimit);
+          (r.path[path.size()] == '.' || r.path[path.size()] == '[') &&
+          std::find(named.begin(), named.end(), r.from) == named.end()) {
+        named.push_back(r.from);
+        below += (below.empty() ? "" : ", ") + printable(r.from, kEchoLimit);
       }
     }
     if (!below.empty()) below = " (with --set " + below + ")";
