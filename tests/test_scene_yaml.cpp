@@ -321,6 +321,14 @@ TEST(SceneYaml, SyntaxError) {
   EXPECT_EQ(msg2.rfind("scene.yaml:3:", 0), 0u) << msg2;
 }
 
+TEST(SceneYaml, NestingTooDeep) {
+  // Past yaml-cpp's depth limit (500 in Debian's build) its own message is "bad file".
+  const std::string deep = std::string(3000, '[') + std::string(3000, ']');
+  const std::string msg = error_of("scenario: a\nsteps: " + deep + "\n");
+  EXPECT_EQ(msg.rfind("scene.yaml:2: YAML syntax error: nesting too deep (", 0), 0u) << msg;
+  expect_set_error(kBase, {"steps=" + deep}, "steps", "' as YAML: nesting too deep (");
+}
+
 TEST(SceneYaml, NotAMapping) {
   EXPECT_NE(error_of("").find("empty"), std::string::npos);
   EXPECT_EQ(error_of("- a\n- b\n").rfind("scene.yaml:1: ", 0), 0u);

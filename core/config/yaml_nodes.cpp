@@ -1,6 +1,8 @@
 // disco — yaml-cpp helpers shared by the settings and scene readers. See yaml_nodes.h.
 #include "core/config/yaml_nodes.h"
 
+#include <yaml-cpp/depthguard.h>
+
 #include <cstddef>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +12,19 @@
 #include "core/util/errors.h"
 
 namespace disco::yaml {
+
+namespace {
+
+// yaml-cpp's message for `e`, except for nesting deeper than its limit, which it calls a
+// "bad file".
+std::string reason(const YAML::Exception& e) {
+  if (const auto* deep = dynamic_cast<const YAML::DeepRecursion*>(&e)) {
+    return "nesting too deep (" + std::to_string(deep->depth()) + " levels)";
+  }
+  return e.msg;
+}
+
+}  // namespace
 
 void override_fail(const std::string& key, const std::string& what) {
   throw InputError(located_message(kOverrideSource, 0, key, what));
@@ -77,7 +92,7 @@ YAML::Node load(const std::string& text, const std::string& source) {
   try {
     return YAML::Load(text);
   } catch (const YAML::Exception& e) {
-    throw InputError(located_message(source, line_of(e.mark), "", "YAML syntax error: " + e.msg));
+    throw InputError(located_message(source, line_of(e.mark), "", "YAML syntax error: " + reason(e)));
   }
 }
 
@@ -97,7 +112,7 @@ Override parse_override(const std::string& assignment, const std::string& exampl
     o.value = YAML::Load(o.text);
   } catch (const YAML::Exception& e) {
     override_fail(o.key, "cannot parse the value '" + printable(o.text, kEchoLimit) +
-                             "' as YAML: " + e.msg);
+                             "' as YAML: " + reason(e));
   }
   return o;
 }
