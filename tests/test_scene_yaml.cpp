@@ -321,6 +321,14 @@ TEST(SceneYaml, SyntaxError) {
   EXPECT_EQ(msg2.rfind("scene.yaml:3:", 0), 0u) << msg2;
 }
 
+TEST(SceneYaml, NestingTooDeep) {
+  // Past yaml-cpp's depth limit (500 in Debian's build) its own message is "bad file".
+  const std::string deep = std::string(3000, '[') + std::string(3000, ']');
+  const std::string msg = error_of("scenario: a\nsteps: " + deep + "\n");
+  EXPECT_EQ(msg.rfind("scene.yaml:2: YAML syntax error: nesting too deep (", 0), 0u) << msg;
+  expect_set_error(kBase, {"steps=" + deep}, "steps", "' as YAML: nesting too deep (");
+}
+
 TEST(SceneYaml, NotAMapping) {
   EXPECT_NE(error_of("").find("empty"), std::string::npos);
   EXPECT_EQ(error_of("- a\n- b\n").rfind("scene.yaml:1: ", 0), 0u);
@@ -484,6 +492,43 @@ TEST(SceneYaml, TargetBoxOrder) {
   const Scene s = parse_scene(with("vx: 0}", "vx: [~, ~], phi: ~}"), kFile);
   EXPECT_EQ(s.robots[0].target.lower[kVx], -kInf);
   EXPECT_EQ(s.robots[0].target.upper[kPhi], kInf);
+}
+
+// Found by tests/fuzz/scene_fuzz.cpp: messages echoed raw control bytes (a newline, NUL,
+// ESC) from the input and had no bound on their length.
+TEST(SceneYaml, ControlBytesInMessagesAreEscaped) {
+  expect_error(with("scenario: two_robots", "scenario: \"two\\nrobots\\0\""), 1, "scenario",
+               "(got the quoted string \"two\\nrobots\\x00\")");
+  expect_error(with("gravity: 9.81", std::string("gra\x01vity: 9.81")), 4, "gra\\x01vity",
+               "unknown key");
+  const std::string syntax = error_of(with("scenario: two_robots", "scenario: \"a\\\x1b\""));
+  EXPECT_EQ(syntax.rfind("scene.yaml:1: YAML syntax error: ", 0), 0u) << syntax;
+  EXPECT_NE(syntax.find("\\x1b"), std::string::npos) << syntax;
+  for (char c : syntax) EXPECT_GE(static_cast<unsigned char>(c), 0x20) << syntax;
+  expect_set_error(kBase, {"ste\tps.x=1"}, "ste\\tps", "unknown key");
+}
+
+TEST(SceneYaml, LongEchoesAreCut) {
+  const std::string value(5000, 'a');
+  const std::string msg = error_of(with("mass: 2.0", "mass: " + value));
+  EXPECT_NE(msg.find("(got '" + std::string(80, 'a') + "... (5000 bytes)')"), std::string::npos)
+      << msg;
+  const std::string key = error_of(with("gravity: 9.81", std::string(1000, 'k') + ": 9.81"));
+  EXPECT_EQ(key.rfind("scene.yaml:4: key '" + std::string(160, 'k') + "... (1000 bytes)': ", 0),
+            0u)
+      << key;
+  const std::string value_set = error_of(kBase, {"robots.0.mass=[" + value});
+  const std::string cut = "cannot parse the value '[" + std::string(79, 'a') + "... (5001 bytes)'";
+  EXPECT_NE(value_set.find(cut), std::string::npos) << value_set;
+  for (const std::string* m : {&msg, &key, &value_set}) EXPECT_LT(m->size(), 500u) << *m;
+}
+
+TEST(SceneYaml, OverridesBelowAKeyAreNamedOnce) {
+  // pairs.extra.b.c=1 creates pairs.extra.b and sets its c: one override, named once.
+  expect_error(with("  mode: avoid", "  mode: avoid\n  extra: {a: 1}"), 22, "pairs.extra",
+               "unknown key (allowed: mode, safe_distance, mu, overrides) "
+               "(with --set pairs.extra.b.c, pairs.extra.d)",
+               {"pairs.extra.b.c=1", "pairs.extra.d=2"});
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 // disco — yaml-cpp helpers shared by the settings and scene readers. See yaml_nodes.h.
 #include "core/config/yaml_nodes.h"
 
+#include <yaml-cpp/depthguard.h>
+
 #include <cstddef>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +12,19 @@
 #include "core/util/errors.h"
 
 namespace disco::yaml {
+
+namespace {
+
+// yaml-cpp's message for `e`, except for nesting deeper than its limit, which it calls a
+// "bad file".
+std::string reason(const YAML::Exception& e) {
+  if (const auto* deep = dynamic_cast<const YAML::DeepRecursion*>(&e)) {
+    return "nesting too deep (" + std::to_string(deep->depth()) + " levels)";
+  }
+  return e.msg;
+}
+
+}  // namespace
 
 void override_fail(const std::string& key, const std::string& what) {
   throw InputError(located_message(kOverrideSource, 0, key, what));
@@ -27,8 +42,10 @@ std::string describe(const YAML::Node& n) {
   switch (n.Type()) {
     case YAML::NodeType::Null:
       return "null";
-    case YAML::NodeType::Scalar:
-      return n.Tag() == "!" ? "the quoted string \"" + n.Scalar() + "\"" : "'" + n.Scalar() + "'";
+    case YAML::NodeType::Scalar: {
+      const std::string text = printable(n.Scalar(), kEchoLimit);
+      return n.Tag() == "!" ? "the quoted string \"" + text + "\"" : "'" + text + "'";
+    }
     case YAML::NodeType::Sequence:
       return "a sequence";
     case YAML::NodeType::Map:
@@ -75,7 +92,7 @@ YAML::Node load(const std::string& text, const std::string& source) {
   try {
     return YAML::Load(text);
   } catch (const YAML::Exception& e) {
-    throw InputError(located_message(source, line_of(e.mark), "", "YAML syntax error: " + e.msg));
+    throw InputError(located_message(source, line_of(e.mark), "", "YAML syntax error: " + reason(e)));
   }
 }
 
@@ -94,7 +111,8 @@ Override parse_override(const std::string& assignment, const std::string& exampl
   try {
     o.value = YAML::Load(o.text);
   } catch (const YAML::Exception& e) {
-    override_fail(o.key, "cannot parse the value '" + o.text + "' as YAML: " + e.msg);
+    override_fail(o.key, "cannot parse the value '" + printable(o.text, kEchoLimit) +
+                             "' as YAML: " + reason(e));
   }
   return o;
 }

@@ -10,7 +10,7 @@
 //   line_of(mark)     the 1-based line of a mark (e.g. a YAML::Exception's); 0 if null.
 //   describe          what a node holds, for the "(got ...)" part of messages: "nothing",
 //                     "null", "'text'", "the quoted string \"text\"", "a sequence" or
-//                     "a mapping".
+//                     "a mapping"; text is cut after kEchoLimit bytes (errors.h, printable).
 //   split_dots        "a.b.0" -> {"a", "b", "0"}; empty parts are kept ("a..b", ".a").
 //   is_index          true for 1 to 9 decimal digits: a usable sequence index.
 //   read_file         the whole text of the file at `path`; InputError if it is a directory

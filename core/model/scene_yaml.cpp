@@ -43,6 +43,9 @@ std::string show(double v) {
   return buf;
 }
 
+// A name from the input, quoted for a message (long ones are cut; see errors.h).
+std::string quote(const std::string& name) { return "'" + printable(name, kEchoLimit) + "'"; }
+
 std::string join(const std::vector<std::string>& items) {
   std::string out;
   for (const std::string& s : items) out += (out.empty() ? "" : ", ") + s;
@@ -79,11 +82,13 @@ bool is_name(const std::string& s) {
   return true;
 }
 
-// A node (or a mapping key) that came from an override: its indexed path and the key as
-// given on the command line. Everything at or below `path` is reported as "--set".
+// A node (or a mapping key) that came from an override: its indexed path, its key as
+// spelt on the command line, and the KEY of the override that set or created it. Everything
+// at or below `path` is reported as "--set".
 struct OverrideRecord {
   std::string path;
   std::string key;
+  std::string from;
 };
 
 // Applies one "KEY=VALUE" override to `root` (a mapping) and records what it touched.
@@ -106,26 +111,26 @@ void apply_override(YAML::Node& root, const std::string& assignment,
       path = child(path, part);
       if (last) {
         cur[part] = value;
-        records.push_back({path, key});
+        records.push_back({path, key, key});
         return;
       }
       const YAML::Node existing = ccur[part];
       if (!existing.IsDefined() || existing.IsNull()) {
         cur[part] = YAML::Node(YAML::NodeType::Map);
-        records.push_back({path, here});
+        records.push_back({path, here, key});
       }
       const YAML::Node next = cur[part];
       cur.reset(next);
     } else if (cur.IsSequence()) {
       if (!is_index(part)) {
-        override_fail(
-            key, "'" + prefix + "' is a sequence: '" + part + "' must be an index (0, 1, ...)");
+        override_fail(key, quote(prefix) + " is a sequence: " + quote(part) +
+                               " must be an index (0, 1, ...)");
       }
       const std::size_t index = std::stoul(part);
       const std::size_t size = cur.size();
       path = item(path, index);
       if (index > size || (index == size && !last)) {
-        override_fail(key, "index " + part + " is out of range: '" + prefix + "' has " +
+        override_fail(key, "index " + part + " is out of range: " + quote(prefix) + " has " +
                                std::to_string(size) + " entries");
       }
       if (last) {
@@ -133,18 +138,18 @@ void apply_override(YAML::Node& root, const std::string& assignment,
           cur.push_back(value);
         else
           cur[index] = value;
-        records.push_back({path, key});
+        records.push_back({path, key, key});
         return;
       }
       const YAML::Node existing = ccur[index];
       if (existing.IsNull()) {
         cur[index] = YAML::Node(YAML::NodeType::Map);
-        records.push_back({path, here});
+        records.push_back({path, here, key});
       }
       const YAML::Node next = cur[index];
       cur.reset(next);
     } else {
-      override_fail(key, "'" + prefix + "' is a single value; it has no entry '" + part + "'");
+      override_fail(key, quote(prefix) + " is a single value; it has no entry " + quote(part));
     }
     prefix = here;
   }
@@ -174,13 +179,16 @@ class Doc {
         at.IsDefined() && at.IsNull() && it != null_lines_.end()) {
       line = it->second;
     }
-    // Values below `path` that came from overrides (e.g. robots.1.start.x for a start
-    // overlap reported at robots[1].start) are named too.
+    // The overrides that set values below `path` (e.g. robots.1.start.x for a start
+    // overlap reported at robots[1].start) are named too, each once.
     std::string below;
+    std::vector<std::string> named;
     for (const OverrideRecord& r : records_) {
       if (r.path.size() > path.size() && r.path.compare(0, path.size(), path) == 0 &&
-          (r.path[path.size()] == '.' || r.path[path.size()] == '[')) {
-        below += (below.empty() ? "" : ", ") + r.key;
+          (r.path[path.size()] == '.' || r.path[path.size()] == '[') &&
+          std::find(named.begin(), named.end(), r.from) == named.end()) {
+        named.push_back(r.from);
+        below += (below.empty() ? "" : ", ") + printable(r.from, kEchoLimit);
       }
     }
     if (!below.empty()) below = " (with --set " + below + ")";
@@ -303,7 +311,9 @@ void set_field(const Doc& doc, const std::string& key, const YAML::Node& n, cons
     r.force_max = doc.positive(n, path);
   } else if (key == "force_dims") {
     const int dims = doc.integer(n, path);
-    if (dims != 1 && dims != 2) doc.fail(n, path, "must be 1 or 2 (got " + n.Scalar() + ")");
+    if (dims != 1 && dims != 2) {
+      doc.fail(n, path, "must be 1 or 2 (got " + std::to_string(dims) + ")");
+    }
     r.force_dims = dims;
   } else if (key == "force_axis") {
     if (!n.IsSequence() || n.size() != 2) {
@@ -390,7 +400,7 @@ std::vector<Robot> read_robots(const Doc& doc, const YAML::Node& seq, const YAML
     r.name = doc.name(name_it->second, child(path, "name"));
     if (const auto dup = index_of.find(r.name); dup != index_of.end()) {
       doc.fail(name_it->second, child(path, "name"),
-               "duplicate robot name '" + r.name + "' (already used by " +
+               "duplicate robot name " + quote(r.name) + " (already used by " +
                    item("robots", dup->second) + ")");
     }
     index_of[r.name] = i;
@@ -419,7 +429,7 @@ std::vector<Robot> read_robots(const Doc& doc, const YAML::Node& seq, const YAML
     if (!(r.force_max > resistance)) {
       const Origin& o = d.origin.at("force_max");
       doc.fail(o.node, o.path,
-               "robot '" + r.name + "' is too weak to move: force_max = " + show(r.force_max) +
+               "robot " + quote(r.name) + " is too weak to move: force_max = " + show(r.force_max) +
                    " N must exceed mu * mass * gravity = " + show(r.mu) + " * " + show(r.mass) +
                    " * " + show(gravity) + " = " + show(resistance) + " N");
     }
@@ -484,16 +494,17 @@ std::vector<Pair> read_pairs(const Doc& doc, const YAML::Node& n,
       for (int r = 0; r < count; ++r) {
         if (robots[r].name == nm) idx[e] = r;
       }
-      if (idx[e] < 0) doc.fail(names[e], item(rpath, e), "unknown robot name '" + nm + "'");
+      if (idx[e] < 0) doc.fail(names[e], item(rpath, e), "unknown robot name " + quote(nm));
     }
     if (idx[0] == idx[1]) {
       doc.fail(names, rpath,
-               "a pair needs two distinct robots (got '" + robots[idx[0]].name + "' twice)");
+               "a pair needs two distinct robots (got " + quote(robots[idx[0]].name) + " twice)");
     }
     const std::pair<int, int> key{std::min(idx[0], idx[1]), std::max(idx[0], idx[1])};
     if (const auto s = seen.find(key); s != seen.end()) {
       doc.fail(names, rpath,
-               "the pair (" + robots[key.first].name + ", " + robots[key.second].name +
+               "the pair (" + printable(robots[key.first].name, kEchoLimit) + ", " +
+                   printable(robots[key.second].name, kEchoLimit) +
                    ") is already set by " + s->second);
     }
     seen[key] = path;
@@ -519,7 +530,7 @@ void check_start_clearance(const Doc& doc, const YAML::Node& robots_node, const 
     const double touch = a.radius + b.radius;
     const std::string path = child(item("robots", p.j), "start");
     const YAML::Node at = robots_node[p.j]["start"];
-    const std::string names = "robots '" + a.name + "' and '" + b.name + "'";
+    const std::string names = "robots " + quote(a.name) + " and " + quote(b.name);
     if (dist < touch * (1 - kTouchTolerance)) {
       doc.fail(at, path,
                names + " overlap at the start: centre distance " + show(dist) +
