@@ -163,6 +163,23 @@ TEST(AdaptiveModel, PairsGetUnknownsOnlyWhereTheyCanMeet) {
   EXPECT_EQ(RobotProblem(swap, ModelOptions{true, kInf}).plan().pairs[0].first, 1);
 }
 
+// A contact pair's gap is >= 0 at every kept state, the first of its window
+// too (there it is no side of a complementarity pair, and its row alone would
+// admit rho + R = -|d|).
+TEST(AdaptiveModel, ContactGapsAreNonnegativeAtEveryKeptState) {
+  const Scene s = scenario("three_robots_contact", {"steps=30"});
+  const RobotProblem rp(s, ModelOptions{true, 3.0});
+  const Layout& L = rp.layout();
+  int late = 0;
+  for (int p = 0; p < static_cast<int>(s.pairs.size()); ++p) {
+    const PairPlan& w = rp.plan().pairs[p];
+    late += w.first > 1 && !w.empty();
+    for (int t = 1; t <= s.steps; ++t)
+      if (L.gap_index(p, t) >= 0) EXPECT_EQ(rp.program().variable_lower()[L.gap_index(p, t)], 0.0) << p << " " << t;
+  }
+  EXPECT_GT(late, 0);  // some window starts late: its first gap is the case in point
+}
+
 // The speed bounds and windows are proofs about the model: check them on
 // certified solutions of the full model, which has every gap at every step.
 // Where the plan leaves a pair out, the solution's robots must be apart.

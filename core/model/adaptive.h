@@ -52,7 +52,10 @@
 //    unknowns, unless its target box excludes them (then the unknowns stay, so
 //    the solver reports the infeasibility as the full model would).
 // 5. A contact pair with mu = 0 has no friction unknowns: its complementarity
-//    forces alpha_1 = alpha_2 = 0 (and leaves gamma arbitrary).
+//    forces alpha_1 = alpha_2 = 0 (and gamma needs only gamma >= |v_T|).
+// Contact-pair gaps are unknowns bounded below by 0 at every kept state
+// (core/model/layout.h), as the full model's are, so the normal impulse's power
+// bound (item 1) holds at every interval, the first of a window included.
 // Left as before (already minimal in core/model/layout.h): D_ef = 1 has one
 // force unknown per step, mu = 0 has no floor friction, avoid pairs no contact
 // forces.

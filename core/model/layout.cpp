@@ -66,8 +66,12 @@ Layout::Layout(const Scene& s, const ModelPlan& plan, PolynomialProgram& P) : sc
       for (int c = 0; c < kStateSize; ++c)
         if (robots_[i].rotates || (c != kPhi && c != kOmega))
           robots_[i].state[t + 1][c] = P.add_variable(-kInf, kInf);
+    // A contact pair's gap is >= 0 at every state: in the full model each is a
+    // side of its pair with c_n; at the first state of a window it is not, and
+    // without the bound its row (rho + R)^2 = |d|^2 would admit rho + R = -|d|.
     for (int p = 0; p < np; ++p)
-      if (gap_at[p][t + 1]) pairs_[p].rho[t + 1] = P.add_variable(-kInf, kInf);
+      if (gap_at[p][t + 1])
+        pairs_[p].rho[t + 1] = P.add_variable(s.pairs[p].mode == PairMode::kContact ? 0.0 : -kInf, kInf);
   }
 }
 
