@@ -335,7 +335,14 @@ struct Context {
 StartOutcome run_task(const Context& c, const Task& t, json* solution) {
   const Scene& scene = c.plan.scenes[t.scene].scene;
   const StartSpec spec = make_start(scene, c.seed, t.start, c.schedule, c.elastic);
-  StartOutcome o = run_start(scene, c.settings, spec, t.budget, solution);
+  // --verbose: every elastic-mode solve of every start, on the rank that runs it.
+  SolveCallback on_solve;
+  if (spdlog::should_log(spdlog::level::debug)) {
+    on_solve = [&, count = 0](const SolveRecord& r) mutable {
+      spdlog::debug("  {} start {}: {}", scene.name, t.start, solve_log_line(++count, r));
+    };
+  }
+  StartOutcome o = run_start(scene, c.settings, spec, t.budget, solution, on_solve);
   o.rank = c.rank;
   return o;
 }

@@ -1,9 +1,14 @@
 // disco — the command-line tool.
 //
 //   disco solve SCENE.yaml [--out DIR] [--start N [--seed S]] [--threads N] [--settings FILE]
-//               [--set KEY=VALUE ...]
+//               [--set KEY=VALUE ...] [--model-only] [--quiet | --verbose]
 //   disco search CONFIG... [--starts N] [--seed S] [--time-limit SEC] [--out DIR] [--resume]
 //                [--threads N] [--settings FILE] [--set KEY=VALUE ...]   (mpi/coordinator.h)
+//                [--quiet | --verbose]
+//
+// Logs go to stderr and results to files; nothing is written to stdout except
+// --help. --quiet keeps warnings and errors only; --verbose adds every Ipopt
+// solve inside an elastic-mode solve and, under search, every start's solve log.
 //
 // Finds a feasible point at a large fixed T_f, then runs the paper's inexact
 // objective reduction from it (search/objective_reduction.h), logging one line
@@ -48,8 +53,26 @@ void set_threads(int threads) {
   }
 }
 
+struct Verbosity {
+  bool quiet = false;
+  bool verbose = false;
+  // The log level of a process; under search only rank 0 reports progress.
+  spdlog::level::level_enum level(bool reporting) const {
+    if (quiet) return spdlog::level::warn;
+    if (verbose) return spdlog::level::debug;
+    return reporting ? spdlog::level::info : spdlog::level::warn;
+  }
+  void add_flags(CLI::App* cmd) {
+    auto* q = cmd->add_flag("-q,--quiet", quiet, "Log warnings and errors only");
+    cmd->add_flag("-v,--verbose", verbose,
+                  "Log every Ipopt solve too (and, under search, every start's solve log)")
+        ->excludes(q);
+  }
+};
+
 // `disco search`: MPI is initialised here and only here.
-int run_search_command(const SearchOptions& o, int threads, int& argc, char**& argv) {
+int run_search_command(const SearchOptions& o, int threads, const Verbosity& verbosity, int& argc,
+                       char**& argv) {
   int provided = 0;
   MPI_Init_thread(&argc, &argv, MPI_THREAD_SERIALIZED, &provided);
   int rank = 0, size = 1;
@@ -60,7 +83,9 @@ int run_search_command(const SearchOptions& o, int threads, int& argc, char**& a
     if (rank == 0) spdlog::error("error: the MPI library does not provide MPI_THREAD_SERIALIZED");
     code = 1;
   } else {
-    if (rank != 0) spdlog::set_level(spdlog::level::warn);  // rank 0 reports
+    spdlog::set_level(verbosity.level(rank == 0));
+    // Every rank logs under --verbose: say which.
+    if (verbosity.verbose && size > 1) spdlog::set_pattern(fmt::format("%^[rank {}] %v%$", rank));
     set_threads(threads);
     try {
       code = run_search(o);
@@ -122,21 +147,17 @@ int run_solve(const SolveOptions& o) {
   }
   if (o.model_only) return 0;
   std::filesystem::create_directories(out_dir);
-  spdlog::info("{:>3} {:<11} {:>10} {:>10} {:<17} {:>9} {:>9} {:>4} {:>5} {:>7}", "#", "phase",
-               "bound[s]", "T_f[s]", "status", "compl", "viol", "nlp", "iter", "sec");
-  int count = 0;
-  auto on_solve = [&](const SolveRecord& r) {
-    spdlog::info("{:>3} {:<11} {:>10.5f} {:>10.5f} {:<17} {:>9.1e} {:>9.1e} {:>4} {:>5} {:>7.3f}{}",
-                 ++count, r.phase, r.bound, r.T_f, to_string(r.status),
-                 r.certificate.max_complementarity, r.certificate.max_violation, r.nlp_solves,
-                 r.iterations, r.seconds,
-                 r.improved                          ? std::string("  *")
-                 : r.status == MpccStatus::kFailed ? "  (Ipopt: " + ipopt_status_name(r.ipopt_status) + ")"
-                                                     : std::string());
-  };
   const StartSpec start =
       make_start(scene, o.seed, o.start, reduction_settings(settings), elastic_settings(settings));
-  if (o.start != 0) spdlog::info("seed {}, {}", o.seed, start.describe());
+  if (o.start != 0) {
+    spdlog::info("seed {}, {}", o.seed, start.describe());
+  } else {
+    spdlog::debug("{}", start.describe());
+  }
+  spdlog::info("{}", solve_log_header());
+  int count = 0;
+  auto on_solve = [&](const SolveRecord& r) { spdlog::info("{}", solve_log_line(++count, r)); };
+
   const SceneSolve run = solve_scene(scene, settings, start, 0.0, on_solve);
   const std::string path = out_dir + "/solution.json";
   write_json_file(path, solution_json(*run.problem, run.z, run.info));
@@ -166,6 +187,7 @@ int main(int argc, char** argv) {
   CLI::App app{"disco: minimum-time control of disk robots with friction (elastic-mode MPCC)"};
   app.require_subcommand(1);
   SolveOptions solve;
+  Verbosity solve_verbosity, search_verbosity;
   auto* cmd = app.add_subcommand("solve", "Solve one scene from one start (objective reduction)");
   cmd->add_option("scene", solve.scene, "Scene file (YAML)")->required();
   cmd->add_option("--out", solve.out, "Output directory (default: out/SCENARIO)");
@@ -183,6 +205,7 @@ int main(int argc, char** argv) {
   cmd->add_option("--set", solve.sets,
                   "Override KEY=VALUE: a settings key (elastic.zeta_max=1e8, ipopt.tol=1e-10) "
                   "or a scene key prefixed with 'scene.' (scene.steps=50)");
+  solve_verbosity.add_flags(cmd);
   SearchOptions search;
   search.settings = default_settings_path();
   int search_threads = 0;
@@ -200,12 +223,15 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   scmd->add_option("--settings", search.settings, "Solver settings file")->capture_default_str();
   scmd->add_option("--set", search.sets, "Override KEY=VALUE (as for solve)");
+  search_verbosity.add_flags(scmd);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
-  if (scmd->parsed()) return run_search_command(search, search_threads, argc, argv);
+  if (scmd->parsed())
+    return run_search_command(search, search_threads, search_verbosity, argc, argv);
+  spdlog::set_level(solve_verbosity.level(true));
   try {
     if (cmd->parsed()) return run_solve(solve);
   } catch (const InputError& e) {

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 
+#include <spdlog/fmt/fmt.h>
+
 #include "core/util/check.h"
 #include "core/util/errors.h"
 #include "core/util/numbers.h"
@@ -52,6 +54,22 @@ double feasibility_horizon(const RobotProblem& problem, const ReductionSettings&
   return scale ? std::max(cfg.horizon_min, cfg.horizon_factor * *scale) : cfg.horizon_min;
 }
 
+std::string solve_log_header() {
+  return fmt::format("{:>3} {:<11} {:>10} {:>10} {:<17} {:>9} {:>9} {:>4} {:>5} {:>7}", "#",
+                     "phase", "bound[s]", "T_f[s]", "status", "compl", "viol", "nlp", "iter",
+                     "sec");
+}
+
+std::string solve_log_line(int number, const SolveRecord& r) {
+  return fmt::format(
+      "{:>3} {:<11} {:>10.5f} {:>10.5f} {:<17} {:>9.1e} {:>9.1e} {:>4} {:>5} {:>7.3f}{}", number,
+      r.phase, r.bound, r.T_f, to_string(r.status), r.certificate.max_complementarity,
+      r.certificate.max_violation, r.nlp_solves, r.iterations, r.seconds,
+      r.improved                          ? std::string("  *")
+      : r.status == MpccStatus::kFailed ? "  (Ipopt: " + ipopt_status_name(r.ipopt_status) + ")"
+                                          : std::string());
+}
+
 ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
                                  const ReductionSettings& cfg, const GuessFunction& guess,
                                  const SolveCallback& on_solve, const PerturbFunction& perturb) {
@@ -76,6 +94,13 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
     out.iterations += r.iterations;
     if (on_solve) on_solve(rec);
   };
+  // `r` (certified, T_f below the best so far) becomes the best point.
+  auto take_best = [&](MpccResult&& r) {
+    out.best = std::move(r);
+    out.T_best = problem.horizon(out.best.z);
+    out.time_to_best = elapsed();
+    out.history.push_back({out.time_to_best, out.T_best});
+  };
 
   // 1. Feasibility at a fixed, generous horizon.
   double T = feasibility_horizon(problem, cfg);
@@ -94,9 +119,8 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
     record("feasibility", T, r, ok);
     if (ok) {
       out.found = true;
-      out.best = std::move(r);
-      out.T_best = problem.horizon(out.best.z);
-      out.time_to_first_feasible = out.time_to_best = elapsed();
+      take_best(std::move(r));
+      out.time_to_first_feasible = out.time_to_best;
     }
     if (cfg.time_limit > 0 && elapsed() > cfg.time_limit) break;
   }
@@ -115,11 +139,7 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
     MpccResult r = solve(p.guess);
     const bool ok = r.solved();
     record("perturbed feasibility", p.seconds, r, ok);
-    if (ok) {
-      out.best = std::move(r);
-      out.T_best = problem.horizon(out.best.z);
-      out.time_to_best = elapsed();
-    }
+    if (ok) take_best(std::move(r));
   }
 
   // 2. Inexact objective reduction.
@@ -134,9 +154,7 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
     const bool improved = r.solved() && T_f < out.T_best;
     record("minimize", out.T_best, r, improved);
     if (improved) {
-      out.best = std::move(r);
-      out.T_best = T_f;
-      out.time_to_best = elapsed();
+      take_best(std::move(r));
       return true;
     }
     return r.solved();
@@ -175,9 +193,7 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
       continue;
     }
     if (improved) {
-      out.best = std::move(r);
-      out.T_best = T_f;
-      out.time_to_best = elapsed();
+      take_best(std::move(r));
       rate = std::min(rate * cfg.grow, 0.5);
       // A minimising step that converged strictly inside its bound is a local
       // optimum: probe below it with fixed steps (the next one that fails ends

@@ -88,6 +88,13 @@ struct SolveRecord {
   bool improved = false;  // became the new best
 };
 
+// The solve log of `disco solve` (and of every start under `disco search
+// --verbose`): a header, then one line per elastic-mode solve, numbered from 1:
+// phase, T_f bound and reached, status, certificate, Ipopt solves, iterations
+// and seconds, and "*" for a new best (or Ipopt's status for a failure).
+std::string solve_log_header();
+std::string solve_log_line(int number, const SolveRecord& r);
+
 struct ReductionResult {
   bool found = false;        // a certified solution exists
   MpccStatus status = MpccStatus::kFailed;  // kSolved if found; else kInfeasible or kFailed
@@ -100,6 +107,13 @@ struct ReductionResult {
   double seconds = 0.0;
   double time_to_first_feasible = -1.0;  // s, -1 if none
   double time_to_best = -1.0;
+  // Every new best, in order: the time since the start of the run (the clock of
+  // time_to_best) and its T_f. The first is the feasible point; the last is T_best.
+  struct Improvement {
+    double seconds = 0.0;
+    double T_f = 0.0;
+  };
+  std::vector<Improvement> history;
 };
 
 // The first feasibility horizon (step 1) for `problem`, in seconds.

@@ -35,6 +35,9 @@ json StartOutcome::to_json() const {
           {"time_to_first_feasible", time_to_first_feasible},
           {"time_to_best", time_to_best},
           {"description", description},
+          {"guess", guess},
+          {"schedule", schedule},
+          {"history", history},
           {"rank", rank},
           {"finished_s", finished_s}};
 }
@@ -55,27 +58,33 @@ StartOutcome StartOutcome::from_json(const json& j) {
   o.time_to_first_feasible = j.value("time_to_first_feasible", -1.0);
   o.time_to_best = j.value("time_to_best", -1.0);
   o.description = j.value("description", "");
+  o.guess = j.value("guess", "");
+  o.schedule = j.value("schedule", json::object());
+  o.history = j.value("history", std::vector<std::array<double, 2>>{});
   o.rank = j.value("rank", 0);
   o.finished_s = j.value("finished_s", -1.0);
   return o;
 }
 
 StartOutcome run_start(const Scene& scene, const Settings& settings, const StartSpec& start,
-                       double time_budget_s, json* solution) {
+                       double time_budget_s, json* solution, const SolveCallback& on_solve) {
   const auto t0 = std::chrono::steady_clock::now();
   StartOutcome out;
   out.scene = scene.name;
   out.start = start.index;
   out.seed = start.seed;
   out.description = start.describe();
+  out.guess = to_string(start.guess);
+  out.schedule = start.schedule_json();
   try {
-    SceneSolve run = solve_scene(scene, settings, start, time_budget_s);
+    SceneSolve run = solve_scene(scene, settings, start, time_budget_s, on_solve);
     const ReductionResult& r = run.result;
     out.status = run.info.status;
     out.nlp_solves = r.nlp_solves;
     out.iterations = r.iterations;
     out.time_to_first_feasible = r.time_to_first_feasible;
     out.time_to_best = r.time_to_best;
+    for (const auto& i : r.history) out.history.push_back({i.seconds, i.T_f});
     if (r.found) {
       out.T_f = r.T_best;
     } else {

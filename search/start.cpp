@@ -398,21 +398,33 @@ std::string to_string(GuessKind kind) {
   return "unknown";
 }
 
-std::string StartSpec::describe() const {
-  std::string kind = to_string(guess);
+// The guess and its parameters, e.g. "detour left".
+static std::string guess_text(const StartSpec& s) {
+  std::string kind = to_string(s.guess);
   char buf[64];
-  if (guess == GuessKind::kDetour) {
-    kind += detour_side > 0 ? " left" : " right";
-  } else if (guess == GuessKind::kPerturbed) {
-    std::snprintf(buf, sizeof buf, " %.2f", perturbation);
+  if (s.guess == GuessKind::kDetour) {
+    kind += s.detour_side > 0 ? " left" : " right";
+  } else if (s.guess == GuessKind::kPerturbed) {
+    std::snprintf(buf, sizeof buf, " %.2f", s.perturbation);
     kind += buf;
-  } else if (guess == GuessKind::kPerturbedFeasible) {
-    std::snprintf(buf, sizeof buf, " %.2f, T x%.2f", perturbation, T_scale);
+  } else if (s.guess == GuessKind::kPerturbedFeasible) {
+    std::snprintf(buf, sizeof buf, " %.2f, T x%.2f", s.perturbation, s.T_scale);
     kind += buf;
-  } else if (guess == GuessKind::kYield) {
-    std::snprintf(buf, sizeof buf, " margin %.2f", margin);
+  } else if (s.guess == GuessKind::kYield) {
+    std::snprintf(buf, sizeof buf, " margin %.2f", s.margin);
     kind += buf;
   }
+  return kind;
+}
+
+nlohmann::json StartSpec::schedule_json() const {
+  return {{"horizon_factor", schedule.horizon_factor}, {"rate", schedule.rate},
+          {"grow", schedule.grow},                     {"shrink", schedule.shrink},
+          {"min_rate", schedule.min_rate},             {"zeta", elastic.zeta}};
+}
+
+std::string StartSpec::describe() const {
+  const std::string kind = guess_text(*this);
   char line[256];
   std::snprintf(line, sizeof line,
                 "start %d: %s, horizon x%.2f, rate %.3f, grow %.2f, shrink %.2f, min rate %.4f, "

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "core/elastic/elastic_solver.h"
@@ -47,6 +48,8 @@ struct StartSpec {
   ReductionSettings schedule;     // feasibility horizon factor, reduction rate, grow, shrink, ...
   ElasticSettings elastic;        // zeta, formulation, ...
   std::string describe() const;   // one line, for runs.jsonl and reports
+  // {horizon_factor, rate, grow, shrink, min_rate, zeta}: the schedule that varies by start.
+  nlohmann::json schedule_json() const;
 };
 
 // The start `index` for `scene` under `seed`, varying the given base settings.

@@ -12,6 +12,10 @@ MODE:
   timelimit    --time-limit 3 on one rank: hands out no start after 3 s, ends soon after
                (starts in flight get only the time left), says so in best.json, and
                keeps the best of what finished.
+  logging      logs go to stderr and results to files (stdout stays empty): the progress
+               line by default, nothing with --quiet, every start's solve log and every
+               Ipopt solve with --verbose (each line naming its rank); the same for
+               `disco solve`; --quiet with --verbose is a usage error (exit 2).
 """
 import json
 import os
@@ -132,6 +136,57 @@ elif MODE == "timelimit":
     for scene, sb in b["scenes"].items():
         solved = [r["T_f"] for r in rs if r["scene"] == scene and r["status"] == "solved"]
         check(sb["T_f"] == (min(solved) if solved else None), f"{scene}: best of what finished")
+elif MODE == "logging":
+    def run(cmd, out):
+        shutil.rmtree(out, ignore_errors=True)
+        return subprocess.run(cmd, env=ENV, capture_output=True, text=True)
+
+    def searched(out, *extra):
+        return run(MPI + [DISCO, "search", BENCH, "--starts", "1", "--out", out, *extra], out)
+
+    out = os.path.join(WORK, "default")
+    r = searched(out)
+    check(r.returncode == 0 and r.stdout == "", f"default: exit 0, stdout empty ({r.stdout[:80]!r})")
+    lines = r.stderr.splitlines()
+    progress = [l for l in lines if l.startswith("[")]
+    check(len(progress) == 2 and all(" | best " in l and " ETA " in l for l in progress),
+          f"default: one progress line per start with best and ETA ({progress})")
+    check(progress[-1].startswith("[2/2]"), "default: the last line counts 2 of 2")
+    check(not any("ipopt" in l for l in lines), "default: no Ipopt lines")
+    check(best(out)["starts_finished"] == 2, "default: results in best.json")
+
+    out = os.path.join(WORK, "quiet")
+    r = searched(out, "--quiet")
+    check(r.returncode == 0 and r.stdout == "" and r.stderr == "",
+          f"--quiet: exit 0, nothing on stdout or stderr ({r.stderr[:200]!r})")
+    check(len(runs(out)) == 2 and best(out)["starts_finished"] == 2, "--quiet: results written")
+
+    out = os.path.join(WORK, "verbose")
+    r = searched(out, "--verbose")
+    lines = r.stderr.splitlines()
+    check(r.returncode == 0 and r.stdout == "", "--verbose: exit 0, stdout empty")
+    check(all(l.startswith(("[rank 0] ", "[rank 1] ")) for l in lines),
+          "--verbose: every line names its rank")
+    for scene in best(out)["scenes"]:
+        check(any(f"{scene} start 0:   1 feasibility" in l for l in lines),
+              f"--verbose: {scene}'s solve log")
+    check(sum("ipopt elastic" in l for l in lines) >= 2, "--verbose: the Ipopt solves")
+    check(sum("ipopt" in l and "[rank 1]" in l for l in lines) >= 1, "--verbose: from rank 1 too")
+
+    sol = os.path.join(WORK, "solve")
+    solve = [DISCO, "solve", os.path.join(os.path.dirname(BENCH), "../scenarios/one_robot_axis.yaml"),
+             "--set", "scene.steps=20", "--out", sol]
+    r = run(solve + ["--quiet"], sol)
+    check(r.returncode == 0 and r.stdout == "" and r.stderr == "", "solve --quiet: exit 0, silent")
+    check(os.path.isfile(os.path.join(sol, "solution.json")), "solve --quiet: solution.json written")
+    r = run(solve, sol)
+    check(r.returncode == 0 and r.stdout == "" and "  1 feasibility" in r.stderr and
+          "ipopt" not in r.stderr, "solve: stdout empty, the solve log on stderr")
+    r = run(solve + ["--verbose"], sol)
+    check(r.returncode == 0 and r.stdout == "" and "ipopt polish" in r.stderr,
+          "solve --verbose: the Ipopt solves too")
+    r = run(solve + ["--quiet", "--verbose"], sol)
+    check(r.returncode == 2 and "excludes" in r.stderr, "--quiet with --verbose: exit 2")
 else:
     sys.exit(f"unknown mode {MODE}")
 

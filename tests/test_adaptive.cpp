@@ -174,8 +174,11 @@ TEST(AdaptiveModel, ContactGapsAreNonnegativeAtEveryKeptState) {
   for (int p = 0; p < static_cast<int>(s.pairs.size()); ++p) {
     const PairPlan& w = rp.plan().pairs[p];
     late += w.first > 1 && !w.empty();
-    for (int t = 1; t <= s.steps; ++t)
-      if (L.gap_index(p, t) >= 0) EXPECT_EQ(rp.program().variable_lower()[L.gap_index(p, t)], 0.0) << p << " " << t;
+    for (int t = 1; t <= s.steps; ++t) {
+      if (L.gap_index(p, t) >= 0) {
+        EXPECT_EQ(rp.program().variable_lower()[L.gap_index(p, t)], 0.0) << p << " " << t;
+      }
+    }
   }
   EXPECT_GT(late, 0);  // some window starts late: its first gap is the case in point
 }

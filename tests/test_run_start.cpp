@@ -54,6 +54,49 @@ TEST(RunStart, ASolvedStartRecordsItsCertifiedResult) {
   EXPECT_EQ(back.seed, out.seed);
 }
 
+TEST(RunStart, ItsHistoryListsEveryNewBestOnTheStartsOwnClock) {
+  // Start 2 of the swap: a reduction with several improvements (the report's
+  // T_f-against-time plot is drawn from this).
+  const Settings settings = Settings::load(default_settings_path());
+  const Scene scene = load_scene(
+      std::string(DISCO_SOURCE_DIR) + "/configs/scenarios/two_robots_swap_avoid.yaml",
+      {"steps=15"});
+  const StartSpec spec = make_start(scene, 1, 2, reduction_settings(settings),
+                                    elastic_settings(settings));
+  const StartOutcome out = run_start(scene, settings, spec, 0.0);
+  ASSERT_EQ(out.status, "solved");
+  ASSERT_GE(out.history.size(), 2u);
+  // The first entry is the feasible point, the last the best; T_f falls
+  // strictly and the clock does not go back.
+  EXPECT_EQ(out.history.front()[0], out.time_to_first_feasible);
+  EXPECT_EQ(out.history.back()[0], out.time_to_best);
+  EXPECT_EQ(out.history.back()[1], out.T_f);
+  for (std::size_t k = 1; k < out.history.size(); ++k) {
+    EXPECT_GE(out.history[k][0], out.history[k - 1][0]);
+    EXPECT_LT(out.history[k][1], out.history[k - 1][1]);
+  }
+  EXPECT_LE(out.time_to_best, out.seconds);
+  // The guess and the schedule are recorded as data, as make_start drew them.
+  EXPECT_EQ(out.guess, to_string(spec.guess));
+  EXPECT_EQ(out.schedule.at("rate").get<double>(), spec.schedule.rate);
+  EXPECT_EQ(out.schedule.at("zeta").get<double>(), spec.elastic.zeta);
+  const StartOutcome back = StartOutcome::from_json(nlohmann::json::parse(out.to_json().dump()));
+  EXPECT_EQ(back.history, out.history);
+  EXPECT_EQ(back.guess, out.guess);
+  EXPECT_EQ(back.schedule, out.schedule);
+}
+
+TEST(RunStart, AStartWithoutASolutionHasAnEmptyHistory) {
+  Settings settings = Settings::load(default_settings_path());
+  const Scene scene = load_scene(std::string(DISCO_SOURCE_DIR) + "/configs/stress/off_axis_target.yaml");
+  const StartSpec spec = make_start(scene, 1, 0, reduction_settings(settings),
+                                    elastic_settings(settings));
+  const StartOutcome out = run_start(scene, settings, spec, 0.0);
+  EXPECT_EQ(out.status, "infeasible");
+  EXPECT_TRUE(out.history.empty());
+  EXPECT_EQ(out.to_json().at("history"), nlohmann::json::array());
+}
+
 TEST(RunStart, ATimeBudgetCapsTheWholeStart) {
   // A start of three_robots_contact runs for tens of seconds unbounded. With a
   // budget, every elastic solve gets only the time left of the whole start, so

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 
+#include <spdlog/spdlog.h>
+
 #include "core/util/check.h"
 #include "core/util/numbers.h"
 
@@ -66,7 +68,8 @@ MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta) {
   DISCO_CHECK(start.z.size() == nlp.num_variables(), "warm start of another shape");
 
   MpccResult out;
-  auto record = [&](const NlpResult& r) {
+  // `what` names the Ipopt solve for the --verbose log (debug level).
+  auto record = [&](const NlpResult& r, const char* what) {
     out.ipopt_status = r.ipopt_status;
     out.nlp_solves += 1;
     out.iterations += r.iterations;
@@ -74,6 +77,9 @@ MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta) {
     out.z = r.point.z.head(n);
     out.certificate = certify(mpcc, out.z);
     if (!mpcc.objective(out.z, out.objective)) out.objective = kInf;
+    spdlog::debug("      ipopt {:<7} zeta {:<8.3g} {:<26} {:>5} it {:>8.3f} s  compl {:.1e}  viol {:.1e}",
+                  what, zeta, ipopt_status_name(r.ipopt_status), r.iterations, r.seconds,
+                  out.certificate.max_complementarity, out.certificate.max_violation);
   };
 
   // 1-2. Elastic solves, raising zeta until complementarity is tight.
@@ -82,7 +88,7 @@ MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta) {
   while (true) {
     nlp.set_zeta(zeta);
     const NlpResult r = ipopt_.solve(nlp, start, remaining(), settings_.iteration_limit);
-    record(r);
+    record(r, "elastic");
     out.zeta = zeta;
     if (r.ipopt_status == 2) {
       out.status = MpccStatus::kInfeasible;
@@ -130,7 +136,7 @@ MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta) {
       polish_start.z[k] = std::clamp(polish_start.z[k], nlp.variable_lower()[k],
                                      nlp.variable_upper()[k]);
     const NlpResult r = ipopt_.solve(nlp, polish_start, remaining(), settings_.iteration_limit);
-    record(r);
+    record(r, "polish");
     if (r.converged() &&
         out.certificate.within(settings_.violation_tol, settings_.complementarity_tol)) {
       out.status = MpccStatus::kSolved;
