@@ -1,0 +1,229 @@
+"""Snapshots of the disks along a trajectory, like Figs. 2-3 of Peng, Anitescu & Akella
+(scripts/plot_snapshots, scripts/report): the overlay (one axes, disks at N times, light to dark)
+and the panels (one axes per time). The disk, target and colour helpers are shared with the
+animation (viz/animation.py).
+"""
+import math
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
+
+from viz.solution_file import (all_contacts, bounds, contacts_at,  # noqa: E402
+                               default_contact_threshold, state_at)
+
+DPI = 100
+
+# --- drawing ----------------------------------------------------------------------------------
+
+def blend(c, other, w):
+    """Colour c moved a fraction w towards other (RGB tuples)."""
+    return tuple((1 - w) * a + w * b for a, b in zip(c[:3], other))
+
+
+WHITE, BLACK = (1.0, 1.0, 1.0), (0.0, 0.0, 0.0)
+
+
+def shade(frac):
+    """Lightening for a snapshot at fraction frac of the time: early light, late full colour."""
+    return 0.78 * (1 - frac)
+
+
+def draw_disk(ax, x, y, phi, r, color, frac, z, label=None):
+    face = blend(color, WHITE, shade(frac))
+    edge = blend(color, BLACK, 0.15 + 0.35 * frac)
+    ax.add_patch(plt.Circle((x, y), r, facecolor=face, edgecolor=edge, lw=1.2, alpha=0.8,
+                            zorder=z))
+    ax.plot([x, x + r * math.cos(phi)], [y, y + r * math.sin(phi)], color=edge, lw=2.0,
+            solid_capstyle="round", zorder=z + 0.001)
+    if label is not None:
+        # Opposite the orientation line, so the two do not collide.
+        lx, ly = x - 0.45 * r * math.cos(phi), y - 0.45 * r * math.sin(phi)
+        ax.text(lx, ly, label, ha="center", va="center", fontsize=7,
+                color="black" if frac < 0.75 else "white", zorder=z + 0.002)
+
+
+def draw_target(ax, rob, color):
+    (xl, yl), (xh, yh) = rob["target"]
+    if None in (xl, yl, xh, yh):
+        return False  # free in x or y: nothing sensible to draw
+    r = rob["radius"]
+    if xl == xh and yl == yh:
+        ax.add_patch(plt.Circle((xl, yl), r, fill=False, ls="--", lw=1.0, edgecolor=color,
+                                zorder=7))
+        ax.plot([xl], [yl], marker="x", ms=7, mew=1.5, color=color, zorder=9)
+    else:
+        ax.add_patch(plt.Rectangle((xl, yl), xh - xl, yh - yl, fill=False, ls="--", lw=1.0,
+                                   edgecolor=color, zorder=7))
+    return True
+
+
+def title_text(sol, extra, width_px):
+    tf = "T_f = –" if sol["T_f"] is None else f"T_f = {sol['T_f']:.3f} s"
+    lb = "" if sol["lower_bound"] is None else f" (lower bound {sol['lower_bound']:.3f} s)"
+    rest = f"{tf}{lb}, status {sol['status']}{extra}"
+    one_line = f"{sol['scenario']}: {rest}"
+    # About 8 px per character at 11 pt and 100 dpi; wrap rather than clip.
+    return one_line if 8 * len(one_line) < width_px else f"{sol['scenario']}\n{rest}"
+
+
+def robot_colors(n):
+    cmap = plt.get_cmap("tab10")
+    return [cmap(k % 10)[:3] for k in range(n)]
+
+
+def legend_handles(sol, colors, contact_any, contact_snap):
+    hs = [Line2D([], [], color=c, lw=1.5, marker="o", ms=8, mfc=blend(c, WHITE, 0.4), mec=c,
+                 label=r["name"]) for r, c in zip(sol["robots"], colors)]
+    hs.append(Line2D([], [], ls="none", marker="o", ms=4, color="0.2", label="start"))
+    hs.append(Line2D([], [], ls="--", marker="x", ms=7, color="0.2", label="target"))
+    if contact_snap:
+        hs.append(Line2D([], [], ls="none", marker="o", ms=6, mfc="red", mec="black",
+                         label="contact at snapshot"))
+    if contact_any:
+        hs.append(Line2D([], [], ls="none", marker="+", ms=6, color="red",
+                         label="contact (any step)"))
+    return hs
+
+
+def overlay(sol, times, thr, size, title_extra):
+    fig, ax = plt.subplots(figsize=(size[0] / DPI, size[1] / DPI), dpi=DPI,
+                           layout="constrained")
+    colors = robot_colors(len(sol["robots"]))
+    has_traj = sol["T_f"] is not None
+    n = len(times)
+    any_snap_contact = False
+    for ri, (rob, c) in enumerate(zip(sol["robots"], colors)):
+        x0, y0, _ = rob["start"]
+        if has_traj:
+            ax.plot(rob["x"], rob["y"], color=c, lw=1.0, zorder=1.8)  # seen through the disks
+        ax.plot([x0], [y0], marker="o", ms=4, color=blend(c, BLACK, 0.3), zorder=9)
+        draw_target(ax, rob, c)
+    if has_traj:
+        h = sol["T_f"] / sol["N_t"]
+        for k, t in enumerate(times):
+            frac = k / (n - 1) if n > 1 else 1.0
+            poses = [state_at(r, t, h, sol["N_t"]) for r in sol["robots"]]
+            for rob, c, (x, y, phi) in zip(sol["robots"], colors, poses):
+                draw_disk(ax, x, y, phi, rob["radius"], c, frac, 2 + 0.01 * k, str(k + 1))
+            for (cx, cy) in contacts_at(sol, t, h, thr, poses):
+                any_snap_contact = True
+                ax.plot([cx], [cy], ls="none", marker="o", ms=6, mfc="red", mec="black",
+                        zorder=10)
+        anyc = all_contacts(sol, thr)
+        if anyc:
+            ax.plot([p[0] for p in anyc], [p[1] for p in anyc], ls="none", marker="+", ms=6,
+                    color="red", zorder=9.5)
+    else:
+        anyc = []
+        for rob, c in zip(sol["robots"], colors):
+            x0, y0, phi0 = rob["start"]
+            draw_disk(ax, x0, y0, phi0, rob["radius"], c, 0.5, 2)
+    handles = legend_handles(sol, colors, bool(anyc), any_snap_contact)
+    if has_traj:
+        grey = (0.35, 0.35, 0.35)
+        for k, t in enumerate(times):
+            frac = k / (n - 1) if n > 1 else 1.0
+            handles.append(Line2D([], [], ls="none", marker="o", ms=10,
+                                  mfc=blend(grey, WHITE, shade(frac)),
+                                  mec=blend(grey, BLACK, 0.15 + 0.35 * frac),
+                                  label=f"{k + 1}:  t = {t:.2f} s"))
+    ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=9,
+              frameon=False, borderaxespad=0.0)
+    finish_axes(ax, sol)
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.set_title(title_text(sol, title_extra, 0.75 * size[0]), fontsize=11)
+    return fig
+
+
+def finish_axes(ax, sol):
+    x0, x1, y0, y1 = bounds(sol)
+    ax.set_xlim(x0, x1)
+    ax.set_ylim(y0, y1)
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.grid(True, lw=0.4, color="0.85", zorder=0)
+    ax.set_axisbelow(True)
+    ax.tick_params(labelsize=8)
+
+
+def panel_grid(n):
+    cols = 1 if n == 1 else (2 if n <= 4 else 3)
+    return cols, math.ceil(n / cols)
+
+
+def panels(sol, times, thr, size, title_extra):
+    cols, rows = panel_grid(len(times))
+    fig = plt.figure(figsize=(size[0] / DPI, size[1] / DPI), dpi=DPI, layout="constrained")
+    # A last, short row holds the legend (matplotlib 3.6 has no "outside" legend placement).
+    grid = fig.add_gridspec(rows + 1, cols, height_ratios=[1.0] * rows + [0.2])
+    axes = [[fig.add_subplot(grid[r, c]) for c in range(cols)] for r in range(rows)]
+    legend_ax = fig.add_subplot(grid[rows, :])
+    legend_ax.set_axis_off()
+    colors = robot_colors(len(sol["robots"]))
+    h = sol["T_f"] / sol["N_t"]
+    any_snap_contact = any_contact = False
+    for k, t in enumerate(times):
+        ax = axes[k // cols][k % cols]
+        past = all_contacts(sol, thr, until=t)
+        if past:
+            any_contact = True
+            ax.plot([p[0] for p in past], [p[1] for p in past], ls="none", marker="+", ms=6,
+                    color="red", zorder=9.5)
+        poses = [state_at(r, t, h, sol["N_t"]) for r in sol["robots"]]
+        upto = min(sol["N_t"], int(math.floor(t / h + 1e-9)))
+        for rob, c, (x, y, phi) in zip(sol["robots"], colors, poses):
+            ax.plot(rob["x"], rob["y"], color=c, lw=0.8, alpha=0.3, zorder=1)
+            ax.plot(rob["x"][:upto + 1] + [x], rob["y"][:upto + 1] + [y], color=c, lw=1.2,
+                    zorder=1.8)
+            ax.plot([rob["start"][0]], [rob["start"][1]], marker="o", ms=3,
+                    color=blend(c, BLACK, 0.3), zorder=9)
+            draw_target(ax, rob, c)
+            draw_disk(ax, x, y, phi, rob["radius"], c, 0.55, 3)
+        for (cx, cy) in contacts_at(sol, t, h, thr, poses):
+            any_snap_contact = True
+            ax.plot([cx], [cy], ls="none", marker="o", ms=6, mfc="red", mec="black", zorder=10)
+        finish_axes(ax, sol)
+        ax.set_title(f"t = {t:.2f} s", fontsize=10)
+    for k in range(len(times), rows * cols):
+        axes[k // cols][k % cols].set_axis_off()
+    handles = legend_handles(sol, colors, any_contact, any_snap_contact)
+    legend_ax.legend(handles=handles, loc="center", ncol=min(len(handles), 8), fontsize=9,
+                     frameon=False)
+    fig.suptitle(title_text(sol, title_extra, size[0]), fontsize=11)
+    return fig
+
+
+
+def snapshot_times(sol, n=6, times=None):
+    """The snapshot times: `times` clipped to [0, T_f] and sorted, else n evenly spaced."""
+    if sol["T_f"] is None:
+        return []
+    if times:
+        return sorted(min(max(t, 0.0), sol["T_f"]) for t in times)
+    return [sol["T_f"] * k / (n - 1) if n > 1 else sol["T_f"] for k in range(n)]
+
+
+def draw_snapshots(sol, out, times, use_panels=None, size=None, thr=None):
+    """Draws `sol` at `times` into the PNG `out`. use_panels None: panels for 4 or more
+    robots. Without a trajectory, the starts and targets in one axes. Returns (size, panels)."""
+    has_traj = sol["T_f"] is not None
+    if use_panels is None:
+        use_panels = len(sol["robots"]) >= 4
+    use_panels = use_panels and has_traj
+    extra = "" if has_traj else " (no trajectory: starts and targets only)"
+    thr = default_contact_threshold(sol) if thr is None else thr
+    if use_panels:
+        cols, rows = panel_grid(len(times))
+        size = size or (400 * cols, 400 * rows + 80)
+        fig = panels(sol, times, thr, size, extra)
+    else:
+        size = size or (1200, 900)
+        fig = overlay(sol, times, thr, size, extra)
+    try:
+        fig.savefig(out, dpi=DPI)
+    finally:
+        plt.close(fig)
+    return size, use_panels

@@ -1,0 +1,180 @@
+"""Reading a disco solution file (`disco solve`'s solution.json, a search's best/SCENE.json;
+schema in README.md, "The solution file") into plain lists, with every key checked, and the
+geometry the drawings share (poses between states, contact points, the scene's extent).
+
+load(path) raises BadInput with a message naming the key, e.g. "missing key 'robots[0].phi'".
+"""
+import json
+import math
+
+class BadInput(Exception):
+    pass
+
+
+
+# --- reading and checking the solution file -------------------------------------------------
+
+def need(obj, key, where):
+    """obj[key], or BadInput naming the full key path."""
+    name = f"{where}.{key}" if where else key
+    if not isinstance(obj, dict):
+        raise BadInput(f"'{where or 'top level'}' is not an object")
+    if key not in obj:
+        raise BadInput(f"missing key '{name}'")
+    return obj[key]
+
+
+def number(v, name, allow_null=False):
+    if v is None and allow_null:
+        return None
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+        raise BadInput(f"'{name}' is {json.dumps(v)}, expected a finite number")
+    return float(v)
+
+
+def series(obj, key, where, length):
+    v = need(obj, key, where)
+    name = f"{where}.{key}"
+    if not isinstance(v, list):
+        raise BadInput(f"'{name}' is {type(v).__name__}, expected a list of {length} numbers")
+    if len(v) != length:
+        raise BadInput(f"'{name}' has {len(v)} entries, expected {length}")
+    return [number(x, f"{name}[{k}]") for k, x in enumerate(v)]
+
+
+def load(path):
+    try:
+        with open(path) as f:
+            doc = json.load(f)
+    except OSError as e:
+        raise BadInput(f"cannot open: {e.strerror}")
+    except (json.JSONDecodeError, UnicodeDecodeError) as e:
+        raise BadInput(f"not valid JSON: {e}")
+    if not isinstance(doc, dict):
+        raise BadInput("top level is not an object")
+
+    sol = {"scenario": str(need(doc, "scenario", "")), "status": str(need(doc, "status", ""))}
+    sol["T_f"] = number(need(doc, "T_f", ""), "T_f", allow_null=True)
+    n_t = need(doc, "N_t", "")
+    if isinstance(n_t, bool) or not isinstance(n_t, int) or n_t < 1:
+        raise BadInput(f"'N_t' is {json.dumps(n_t)}, expected an integer >= 1")
+    sol["N_t"] = n_t
+    sol["lower_bound"] = doc.get("lower_bound") if isinstance(doc.get("lower_bound"), (int, float)) else None
+    has_traj = sol["T_f"] is not None
+    if has_traj and sol["T_f"] <= 0:
+        raise BadInput(f"'T_f' is {sol['T_f']}, expected > 0")
+
+    robots = need(doc, "robots", "")
+    if not isinstance(robots, list) or not robots:
+        raise BadInput("'robots' is not a non-empty list")
+    sol["robots"] = []
+    for i, r in enumerate(robots):
+        w = f"robots[{i}]"
+        rob = {"name": str(need(r, "name", w)),
+               "radius": number(need(r, "radius", w), f"{w}.radius"),
+               "F_max": number(r.get("F_max", 1.0), f"{w}.F_max") if isinstance(r, dict) else 1.0}
+        if rob["radius"] <= 0:
+            raise BadInput(f"'{w}.radius' is {rob['radius']}, expected > 0")
+        start = need(r, "start", w)
+        if not isinstance(start, list) or len(start) < 3:
+            raise BadInput(f"'{w}.start' is not a list [x, y, phi, ...]")
+        rob["start"] = [number(v, f"{w}.start[{k}]") for k, v in enumerate(start[:3])]
+        target = need(r, "target", w)
+        lo, hi = need(target, "lower", f"{w}.target"), need(target, "upper", f"{w}.target")
+        for name, b in (("lower", lo), ("upper", hi)):
+            if not isinstance(b, list) or len(b) < 2:
+                raise BadInput(f"'{w}.target.{name}' is not a list [x, y, ...]")
+        rob["target"] = [[number(b[k], f"{w}.target.{name}[{k}]", allow_null=True) for k in (0, 1)]
+                         for name, b in (("lower", lo), ("upper", hi))]
+        for key in ("x", "y", "phi"):
+            if has_traj:
+                rob[key] = series(r, key, w, n_t + 1)
+            else:
+                need(r, key, w)
+        sol["robots"].append(rob)
+
+    pairs = need(doc, "pairs", "")
+    if not isinstance(pairs, list):
+        raise BadInput("'pairs' is not a list")
+    sol["pairs"] = []
+    for p_idx, p in enumerate(pairs):
+        w = f"pairs[{p_idx}]"
+        i, j = need(p, "i", w), need(p, "j", w)
+        for name, v in (("i", i), ("j", j)):
+            if isinstance(v, bool) or not isinstance(v, int) or not 0 <= v < len(robots):
+                raise BadInput(f"'{w}.{name}' is {json.dumps(v)}, expected a robot index "
+                               f"0..{len(robots) - 1}")
+        pair = {"i": i, "j": j}
+        if has_traj:
+            pair["normal_force"] = series(p, "normal_force", w, n_t)
+        else:
+            need(p, "normal_force", w)
+        sol["pairs"].append(pair)
+    return sol
+
+
+# --- geometry ---------------------------------------------------------------------------------
+
+def state_at(rob, t, h, n_t):
+    """(x, y, phi) at time t, linear between the stored states."""
+    s = min(max(t / h, 0.0), float(n_t))
+    k = min(int(math.floor(s)), n_t - 1)
+    f = s - k
+    return tuple(rob[key][k] * (1 - f) + rob[key][k + 1] * f for key in ("x", "y", "phi"))
+
+
+def contacts_at(sol, t, h, thr, poses):
+    """Contact points of pairs pushing over the step ending at (or containing) time t."""
+    k = int(math.ceil(t / h - 1e-9)) - 1
+    if k < 0:
+        return []
+    k = min(k, sol["N_t"] - 1)
+    pts = []
+    for p in sol["pairs"]:
+        if p["normal_force"][k] > thr:
+            pts.append(contact_point(sol["robots"], p["i"], p["j"], poses))
+    return pts
+
+
+def contact_point(robots, i, j, poses):
+    (xi, yi, _), (xj, yj, _) = poses[i], poses[j]
+    d = math.hypot(xj - xi, yj - yi) or 1e-12
+    ri, rj = robots[i]["radius"], robots[j]["radius"]
+    gap = d - ri - rj
+    s = (ri + gap / 2) / d
+    return (xi + s * (xj - xi), yi + s * (yj - yi))
+
+
+def all_contacts(sol, thr, until=None):
+    """Contact points of every step with a normal force above thr (steps ending by `until`)."""
+    pts = []
+    h = sol["T_f"] / sol["N_t"]
+    for p in sol["pairs"]:
+        for k, fn in enumerate(p["normal_force"]):
+            if fn > thr and (until is None or (k + 1) * h <= until * (1 + 1e-12)):
+                poses = {q: tuple(sol["robots"][q][key][k + 1] for key in ("x", "y", "phi"))
+                         for q in (p["i"], p["j"])}
+                pts.append(contact_point(sol["robots"], p["i"], p["j"], poses))
+    return pts
+
+
+def default_contact_threshold(sol):
+    """A pair is in contact above this normal force [N]: 0.1 % of the robots' mean F_max."""
+    return 1e-3 * sum(r["F_max"] for r in sol["robots"]) / len(sol["robots"])
+
+
+def bounds(sol):
+    xs, ys = [], []
+    for r in sol["robots"]:
+        rad = r["radius"]
+        px = r["x"] if "x" in r else [r["start"][0]]
+        py = r["y"] if "y" in r else [r["start"][1]]
+        xs += [min(px) - rad, max(px) + rad]
+        ys += [min(py) - rad, max(py) + rad]
+        (xl, yl), (xh, yh) = r["target"]
+        for v, acc in ((xl, xs), (xh, xs), (yl, ys), (yh, ys)):
+            if v is not None:
+                acc += [v - rad, v + rad]
+    pad = 0.05 * max(max(xs) - min(xs), max(ys) - min(ys)) + 0.1
+    return min(xs) - pad, max(xs) + pad, min(ys) - pad, max(ys) + pad
+
