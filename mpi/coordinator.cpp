@@ -429,7 +429,8 @@ int run_search(const SearchOptions& o) {
   }
   if (coordinator.joinable()) coordinator.join();
   search.finish();
-  spdlog::info("wrote {}/runs.jsonl, {}/best.json", o.out, o.out);
+  spdlog::info("wrote {}/runs.jsonl, {}/best.json; an HTML report: scripts/report {}", o.out,
+               o.out, o.out);
   return search.all_solved() ? 0 : 3;
 }
 

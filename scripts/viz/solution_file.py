@@ -42,7 +42,22 @@ def series(obj, key, where, length):
     return [number(x, f"{name}[{k}]") for k, x in enumerate(v)]
 
 
-def load(path):
+# With full=True (the report's time plots), these are read and checked too.
+ROBOT_STATES = ("vx", "vy", "omega")                       # N_t + 1 entries
+ROBOT_STEPS = ("Fx", "Fy", "friction_x", "friction_y", "contact_x", "contact_y",
+               "contact_torque")                           # N_t entries
+ROBOT_NUMBERS = ("mass", "mu")
+PAIR_STATES = ("distance",)
+PAIR_STEPS = ("normal_force", "tangential_force")
+
+
+def load(path, full=False):
+    """The solution file at `path` as plain lists. Always: scenario, status, T_f (None without
+    a trajectory), N_t, lower_bound, robots (name, radius, F_max, start [x, y, phi], target
+    [[x, y] lower, [x, y] upper] with None for free, x, y, phi) and pairs (i, j,
+    normal_force). full=True adds g, certificate, model, timing, status_detail, each robot's
+    mass, mu, vx, vy, omega and per-step forces, and each pair's mode, safe_distance, mu,
+    distance and tangential_force."""
     try:
         with open(path) as f:
             doc = json.load(f)
@@ -86,11 +101,19 @@ def load(path):
                 raise BadInput(f"'{w}.target.{name}' is not a list [x, y, ...]")
         rob["target"] = [[number(b[k], f"{w}.target.{name}[{k}]", allow_null=True) for k in (0, 1)]
                          for name, b in (("lower", lo), ("upper", hi))]
-        for key in ("x", "y", "phi"):
+        for key in ("x", "y", "phi") + (ROBOT_STATES if full else ()):
             if has_traj:
                 rob[key] = series(r, key, w, n_t + 1)
             else:
                 need(r, key, w)
+        if full:
+            for key in ROBOT_STEPS:
+                if has_traj:
+                    rob[key] = series(r, key, w, n_t)
+                else:
+                    need(r, key, w)
+            for key in ROBOT_NUMBERS:
+                rob[key] = number(need(r, key, w), f"{w}.{key}")
         sol["robots"].append(rob)
 
     pairs = need(doc, "pairs", "")
@@ -105,11 +128,26 @@ def load(path):
                 raise BadInput(f"'{w}.{name}' is {json.dumps(v)}, expected a robot index "
                                f"0..{len(robots) - 1}")
         pair = {"i": i, "j": j}
-        if has_traj:
-            pair["normal_force"] = series(p, "normal_force", w, n_t)
-        else:
-            need(p, "normal_force", w)
+        steps = PAIR_STEPS if full else ("normal_force",)
+        for key, length in [(k, n_t) for k in steps] + [(k, n_t + 1) for k in
+                                                        (PAIR_STATES if full else ())]:
+            if has_traj:
+                pair[key] = series(p, key, w, length)
+            else:
+                need(p, key, w)
+        if full:
+            pair["mode"] = str(need(p, "mode", w))
+            pair["safe_distance"] = number(need(p, "safe_distance", w), f"{w}.safe_distance")
+            pair["mu"] = number(need(p, "mu", w), f"{w}.mu")
         sol["pairs"].append(pair)
+    if full:
+        sol["g"] = number(need(doc, "g", ""), "g")
+        sol["status_detail"] = str(doc.get("status_detail", ""))
+        for key in ("certificate", "model", "timing"):
+            v = need(doc, key, "")
+            if not isinstance(v, dict):
+                raise BadInput(f"'{key}' is not an object")
+            sol[key] = v
     return sol
 
 

@@ -1,0 +1,96 @@
+"""An animated GIF of a solution's motion (scripts/report), drawn like the snapshots: each
+robot's disk with its orientation line, the path travelled so far over the whole path (faint),
+start dots and targets, red dots at pairs in contact, and the time.
+
+Frames are evenly spaced over [0, T_f] and played at `fps`; the GIF plays in real time unless
+that needs more than `max_frames` frames, in which case it plays faster and says by how much.
+The static part (axes, paths, targets) is drawn once; each frame restores it and draws only
+the moving artists (matplotlib's blitting), then Pillow (python3-pil, a dependency of Debian's
+python3-matplotlib) writes the GIF.
+"""
+import math
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from PIL import Image  # noqa: E402
+
+from viz.snapshots import (BLACK, DPI, WHITE, blend, draw_target, finish_axes,  # noqa: E402
+                           robot_colors)
+from viz.solution_file import contacts_at, default_contact_threshold, state_at  # noqa: E402
+
+
+def frame_plan(T_f, fps, max_frames):
+    """(frames, playback fps, speed-up): frames >= 2 evenly spaced over [0, T_f]. In real time
+    (speed-up 1) the playback rate is set so the frames span T_f exactly; with more than
+    max_frames needed, max_frames are played at fps, faster than real time."""
+    frames = int(math.ceil(T_f * fps)) + 1
+    if frames <= max_frames:
+        frames = max(2, frames)
+        return frames, (frames - 1) / T_f, 1.0
+    return max_frames, fps, T_f * fps / (max_frames - 1)
+
+
+def write_gif(sol, out, fps=20, max_frames=160, size=(720, 540)):
+    """Writes the animation of `sol` (with a trajectory) to `out`; returns (frames, speed-up)."""
+    frames, fps, speed = frame_plan(sol["T_f"], fps, max_frames)
+    n_t, T_f = sol["N_t"], sol["T_f"]
+    h = T_f / n_t
+    thr = default_contact_threshold(sol)
+    fig, ax = plt.subplots(figsize=(size[0] / DPI, size[1] / DPI), dpi=DPI, layout="constrained")
+    colors = robot_colors(len(sol["robots"]))
+    disks, heads, trails = [], [], []
+    for rob, c in zip(sol["robots"], colors):
+        ax.plot(rob["x"], rob["y"], color=c, lw=0.8, alpha=0.25, zorder=1)
+        ax.plot([rob["start"][0]], [rob["start"][1]], marker="o", ms=3,
+                color=blend(c, BLACK, 0.3), zorder=9)
+        draw_target(ax, rob, c)
+        trails.append(ax.plot([], [], color=c, lw=1.4, zorder=1.8)[0])
+        disk = plt.Circle((0, 0), rob["radius"], facecolor=blend(c, WHITE, 0.35),
+                          edgecolor=blend(c, BLACK, 0.35), lw=1.2, alpha=0.9, zorder=3)
+        ax.add_patch(disk)
+        disks.append(disk)
+        heads.append(ax.plot([], [], color=blend(c, BLACK, 0.35), lw=2.0,
+                             solid_capstyle="round", zorder=3.1)[0])
+    contacts = ax.plot([], [], ls="none", marker="o", ms=6, mfc="red", mec="black", zorder=10)[0]
+    finish_axes(ax, sol)
+    ax.set_xlabel("x [m]", fontsize=9)
+    ax.set_ylabel("y [m]", fontsize=9)
+    speed_text = "real time" if speed == 1.0 else f"played ×{speed:.2f}"
+    title = ax.set_title(f"{sol['scenario']}: t = {T_f:5.2f} s of {T_f:.2f} s ({speed_text})",
+                         fontsize=10)
+
+    def draw(f):
+        t = T_f * f / (frames - 1)
+        poses = [state_at(r, t, h, n_t) for r in sol["robots"]]
+        upto = min(n_t, int(math.floor(t / h + 1e-9)))
+        for rob, (x, y, phi), disk, head, trail in zip(sol["robots"], poses, disks, heads, trails):
+            disk.center = (x, y)
+            r = rob["radius"]
+            head.set_data([x, x + r * math.cos(phi)], [y, y + r * math.sin(phi)])
+            trail.set_data(rob["x"][:upto + 1] + [x], rob["y"][:upto + 1] + [y])
+        pts = contacts_at(sol, t, h, thr, poses)
+        contacts.set_data([p[0] for p in pts], [p[1] for p in pts])
+        title.set_text(f"{sol['scenario']}: t = {t:5.2f} s of {T_f:.2f} s ({speed_text})")
+
+    moving = trails + disks + heads + [contacts, title]  # in z-order
+    try:
+        for a in moving:
+            a.set_animated(True)
+        fig.canvas.draw()  # the static part, laid out once
+        background = fig.canvas.copy_from_bbox(fig.bbox)
+        images = []
+        for f in range(frames):
+            draw(f)
+            fig.canvas.restore_region(background)
+            for a in moving:
+                ax.draw_artist(a)
+            rgb = np.asarray(fig.canvas.buffer_rgba())[..., :3]
+            images.append(Image.fromarray(np.ascontiguousarray(rgb)))
+        images[0].save(out, format="GIF", save_all=True, append_images=images[1:],
+                       duration=round(1000.0 / fps), loop=0)
+    finally:
+        plt.close(fig)
+    return frames, speed

@@ -1,0 +1,243 @@
+"""The HTML of a search report (scripts/report): one self-contained page, no script, no network.
+Images and raw data are referenced by relative paths inside the report folder.
+
+page(report) takes the plain data gathered by scripts/report:
+  report = {title, source, generated, search: best.json's top level or None,
+            ranks, scenes: [scene, ...], data: [(label, path), ...]}
+  scene  = {name, best: best.json entry (T_f, lower_bound, ...), runs: [runs.jsonl lines],
+            sol: solution (viz.solution_file.load full) or None, figures: [(title, path,
+            caption)], search_figures: [...], solution_link, problems: [text], info: {...}}
+"""
+import html
+
+CSS = """
+:root { --fg: #1d232a; --muted: #5b6570; --line: #d9dee3; --head: #f3f5f7; --best: #fff4c2;
+        --bad: #a4281e; --ok: #1f6f3a; }
+* { box-sizing: border-box; }
+body { font: 15px/1.45 system-ui, -apple-system, "Segoe UI", "DejaVu Sans", sans-serif;
+       color: var(--fg); margin: 0; background: #fff; }
+main { max-width: 1200px; margin: 0 auto; padding: 24px 28px 64px; }
+h1 { font-size: 26px; margin: 0 0 4px; }
+h2 { font-size: 21px; margin: 40px 0 8px; padding-top: 12px; border-top: 2px solid var(--line); }
+h3 { font-size: 16px; margin: 24px 0 8px; color: #2c3a47; }
+p.meta, .muted { color: var(--muted); }
+p.meta { margin: 0 0 16px; }
+a { color: #1659a8; text-decoration: none; }
+a:hover { text-decoration: underline; }
+nav.toc { margin: 8px 0 0; font-size: 14px; }
+nav.toc a { margin-right: 14px; white-space: nowrap; }
+table { border-collapse: collapse; font-size: 13.5px; margin: 8px 0 4px; }
+th, td { padding: 5px 9px; border-bottom: 1px solid var(--line); text-align: left;
+         vertical-align: top; }
+th { background: var(--head); font-weight: 600; vertical-align: bottom; }
+td.num, th.num { text-align: right; font-variant-numeric: tabular-nums; }
+td.num { white-space: nowrap; }
+tr.best td { background: var(--best); }
+.status-solved { color: var(--ok); font-weight: 600; }
+.status-other { color: var(--bad); font-weight: 600; }
+.scroll { overflow-x: auto; }
+.facts { display: grid; grid-template-columns: max-content 1fr; gap: 3px 16px; margin: 8px 0 12px;
+         font-size: 14px; }
+.facts dt { color: var(--muted); }
+.facts dd { margin: 0; }
+.row { display: flex; flex-wrap: wrap; gap: 16px; align-items: flex-start; }
+figure { margin: 8px 0 16px; }
+figure img { max-width: 100%; height: auto; border: 1px solid var(--line); border-radius: 3px;
+             display: block; }
+figcaption { font-size: 13px; color: var(--muted); margin-top: 4px; max-width: 900px; }
+.row figure { flex: 1 1 480px; min-width: 0; }
+.row figure.wide { flex-basis: 100%; }
+.problem { background: #fdecea; border-left: 4px solid var(--bad); padding: 8px 12px;
+           margin: 8px 0; }
+footer { margin-top: 48px; font-size: 13px; color: var(--muted); }
+"""
+
+
+def esc(x):
+    return html.escape(str(x), quote=True)
+
+
+def fmt(v, spec, none="–"):
+    return none if v is None else format(v, spec)
+
+
+def anchor(name):
+    return "scene-" + "".join(c if c.isalnum() or c in "-_" else "-" for c in name)
+
+
+def gap_text(best):
+    """(gap text, against what) of a scene: vs its lower bound, else vs its reference time."""
+    T = best.get("T_f")
+    if T is None:
+        return "–", ""
+    for key, what in (("lower_bound", ""), ("reference_time", " vs ref")):
+        ref = best.get(key)
+        if ref:
+            return f"{100.0 * (T - ref) / ref:.2f} %{what}", key
+    return "–", ""
+
+
+def certificate_text(c):
+    if not c or c.get("max_violation") is None:
+        return "–"
+    return f"{c['max_violation']:.1e} / {c['max_complementarity']:.1e}"
+
+
+def status_cell(status):
+    cls = {"solved": "status-solved", "not run": "muted"}.get(status, "status-other")
+    return f'<span class="{cls}">{esc(status)}</span>'
+
+
+def summary_table(scenes):
+    head = ("<tr><th>scene</th><th class=num>robots / pairs</th><th class=num>N_t</th>"
+            "<th class=num>T_f [s]</th><th class=num>lower bound [s]</th><th class=num>gap</th>"
+            "<th class=num>first feasible [s]</th><th class=num>best found [s]</th>"
+            "<th class=num>starts run / solved</th><th class=num>certificate viol. / compl.</th>"
+            "<th>found by</th></tr>")
+    rows = []
+    uses_ref = False
+    for s in scenes:
+        b = s["best"]
+        gap, against = gap_text(b)
+        uses_ref |= against == "reference_time"
+        found = (f"start {b['start']}: {esc(s['info'].get('best_guess', ''))}"
+                 if b.get("start") is not None
+                 else status_cell(s["info"].get("status", "no certified solution")))
+        info = s["info"]
+        rows.append(
+            f'<tr><td><a href="#{anchor(s["name"])}">{esc(s["name"])}</a></td>'
+            f"<td class=num>{info.get('robots', '–')} / {info.get('pairs', '–')}</td>"
+            f"<td class=num>{info.get('N_t', '–')}</td>"
+            f"<td class=num><b>{fmt(b.get('T_f'), '.6f')}</b></td>"
+            f"<td class=num>{fmt(b.get('lower_bound'), '.6f', 'none')}</td>"
+            f"<td class=num>{esc(gap)}</td>"
+            f"<td class=num>{fmt(b.get('time_to_first_feasible_s'), '.1f')}</td>"
+            f"<td class=num>{fmt(b.get('time_to_best_s'), '.1f')}</td>"
+            f"<td class=num>{b.get('starts_run', '–')} / {b.get('starts_solved', '–')}</td>"
+            f"<td class=num>{certificate_text(b.get('certificate'))}</td>"
+            f"<td>{found}</td></tr>")
+    notes = ["Times count from the hand-out of the scene's first start to the moment a rank "
+             "found the point (best.json). Certificate: the largest constraint violation and "
+             "the largest |min(G, H)| over complementarity pairs, in the model's units; "
+             "<i>solved</i> means both are at most 1e-6."]
+    if uses_ref:
+        notes.append("“vs ref”: no lower bound holds (robots can be pushed); the gap is "
+                     "measured against the slowest robot's straight move alone "
+                     "(reference_time), which is not a bound.")
+    return (f'<div class="scroll"><table>{head}{"".join(rows)}</table></div>'
+            + "".join(f'<p class="muted" style="font-size:13px;margin:4px 0">{n}</p>'
+                      for n in notes))
+
+
+def start_table(s):
+    runs = s["runs"]
+    if not runs:
+        return '<p class="muted">No runs.jsonl lines for this scene.</p>'
+    best_T = s["best"].get("T_f")
+    ordered = sorted(runs, key=lambda r: (r["status"] != "solved", r.get("T_f") or 0.0,
+                                          r["start"]))
+    head = ("<tr><th class=num>start</th><th>guess</th><th>schedule</th><th>status</th>"
+            "<th class=num>T_f [s]</th><th class=num>vs best</th>"
+            "<th class=num>first feasible [s]</th><th class=num>best at [s]</th>"
+            "<th class=num>run [s]</th><th class=num>solves / iterations</th>"
+            "<th class=num>rank</th><th class=num>certificate</th></tr>")
+    rows = []
+    for r in ordered:
+        solved = r["status"] == "solved" and r.get("T_f") is not None
+        best = r["start"] == s["best"].get("start")
+        vs = (f"+{100.0 * (r['T_f'] - best_T) / best_T:.2f} %" if solved and best_T and not best
+              else ("best" if best else "–"))
+        sched = r.get("schedule") or {}
+        sched_text = (f"horizon ×{sched['horizon_factor']:.2f}, rate {sched['rate']:.3f}, "
+                      f"grow {sched['grow']:.2f}, shrink {sched['shrink']:.2f}, "
+                      f"min rate {sched['min_rate']:.4f}, ζ {sched['zeta']:g}"
+                      if sched else esc(r.get("description", "")))
+        detail = f"<br><span class=muted>{esc(r['detail'])}</span>" if r.get("detail") else ""
+        guess_text = r.get("description", "").split(": ", 1)[-1].split(", horizon")[0]
+        rows.append(
+            f'<tr{" class=best" if best else ""}><td class=num>{r["start"]}</td>'
+            f"<td>{esc(guess_text or r.get('guess', ''))}</td><td>{sched_text}</td>"
+            f"<td>{status_cell(r['status'])}{detail}</td>"
+            f"<td class=num>{fmt(r.get('T_f'), '.6f')}</td><td class=num>{vs}</td>"
+            f"<td class=num>{fmt(r.get('time_to_first_feasible') if solved else None, '.2f')}</td>"
+            f"<td class=num>{fmt(r.get('time_to_best') if solved else None, '.2f')}</td>"
+            f"<td class=num>{r.get('seconds', 0.0):.2f}</td>"
+            f"<td class=num>{r.get('nlp_solves', '–')} / {r.get('iterations', '–')}</td>"
+            f"<td class=num>{r.get('rank', '–')}</td>"
+            f"<td class=num>{certificate_text(r.get('certificate'))}</td></tr>")
+    return f'<div class="scroll"><table>{head}{"".join(rows)}</table></div>'
+
+
+def figure(title, path, caption, wide=False):
+    cls = ' class="wide"' if wide else ""
+    return (f'<figure{cls}><img src="{esc(path)}" alt="{esc(title)}" loading="lazy">'
+            f"<figcaption><b>{esc(title)}.</b> {caption}</figcaption></figure>")
+
+
+def scene_section(s):
+    b, info = s["best"], s["info"]
+    out = [f'<h2 id="{anchor(s["name"])}">{esc(s["name"])}</h2>']
+    for p in s["problems"]:
+        out.append(f'<div class="problem">{esc(p)}</div>')
+    facts = [("status", status_cell(info.get("status", "–"))
+              + (f" <span class=muted>({esc(info['status_detail'])})</span>"
+                 if info.get("status_detail") else ""))]
+    if b.get("T_f") is not None:
+        gap, _ = gap_text(b)
+        facts.append(("T_f", f"<b>{b['T_f']:.6f} s</b>, gap {esc(gap)}"))
+    if info.get("best_description"):
+        facts.append(("found by", esc(info["best_description"])
+                      + (f", {b['time_to_best_s']:.1f} s into the scene"
+                         if b.get("time_to_best_s") is not None else "")))
+    if info.get("model"):
+        m = info["model"]
+        facts.append(("model", f"{m.get('variables')} variables, {m.get('constraints')} "
+                               f"constraints, {m.get('complementarity_pairs')} "
+                               "complementarity pairs"))
+    if info.get("robots") is not None:
+        facts.append(("scene", f"{info['robots']} robots, {info['pairs']} pairs "
+                               f"({esc(info.get('pair_modes', ''))}), N_t = {info['N_t']}"))
+    links = [f'<a href="{esc(p)}">{esc(label)}</a>' for label, p in s["links"]]
+    if links:
+        facts.append(("raw data", " · ".join(links)))
+    out.append('<dl class="facts">' + "".join(f"<dt>{k}</dt><dd>{v}</dd>" for k, v in facts)
+               + "</dl>")
+    if s["motion"]:
+        out.append("<h3>Motion</h3>")
+        out.append('<div class="row">' + "".join(figure(*f) for f in s["motion"]) + "</div>")
+    if s["figures"]:
+        out.append("<h3>Over time</h3>")
+        out.extend(figure(*f) for f in s["figures"])
+    if s["runs"] or s["search_figures"]:
+        out.append("<h3>The search</h3>")
+        out.extend(figure(*f) for f in s["search_figures"])
+        out.append(start_table(s))
+    return "\n".join(out)
+
+
+def page(report):
+    search = report.get("search")
+    meta = [f"Source: <code>{esc(report['source'])}</code>", f"generated {esc(report['generated'])}"]
+    if search:
+        meta.append(f"seed {search.get('seed')}, {search.get('starts_finished')} of "
+                    f"{search.get('starts_total')} starts finished on {report['ranks']} rank(s) "
+                    f"in {search.get('elapsed_s', 0.0):.1f} s")
+        if search.get("time_limit_reached"):
+            meta.append("<b>the time limit stopped the search</b>")
+    toc = " ".join(f'<a href="#{anchor(s["name"])}">{esc(s["name"])}</a>'
+                   for s in report["scenes"])
+    data = " · ".join(f'<a href="{esc(p)}">{esc(label)}</a>' for label, p in report["data"])
+    body = [f"<h1>{esc(report['title'])}</h1>",
+            f'<p class="meta">{" · ".join(meta)}</p>',
+            "<h2 id=summary>Summary</h2>", summary_table(report["scenes"]),
+            f'<nav class="toc">Scenes: {toc}</nav>',
+            f'<p class="muted" style="font-size:14px">Raw data: {data}</p>']
+    body += [scene_section(s) for s in report["scenes"]]
+    body.append("<footer>Made by disco's scripts/report from the search's best.json, "
+                "runs.jsonl and best/*.json (copied to data/). Model: Peng, Anitescu &amp; "
+                "Akella, <i>Optimal Control of Multiple Robot Systems with Friction using "
+                "MPCC</i>, Appendix A.</footer>")
+    return ("<!DOCTYPE html>\n<html lang=en>\n<head>\n<meta charset=utf-8>\n"
+            '<meta name=viewport content="width=device-width, initial-scale=1">\n'
+            f"<title>{esc(report['title'])}</title>\n<style>{CSS}</style>\n</head>\n<body>\n"
+            "<main>\n" + "\n".join(body) + "\n</main>\n</body>\n</html>\n")

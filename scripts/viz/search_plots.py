@@ -1,0 +1,154 @@
+"""Plots of a multi-start search for one scene (scripts/report), from its runs.jsonl lines and
+its best.json entry:
+
+- progress: T_f against search time for every start. A start runs from its hand-out
+  (finished_s - seconds) to its end; its line steps down at every new best of its `history`
+  ([seconds within the start, T_f]). The black stairs are the scene's best so far over all
+  starts. Times count from the scene's first hand-out (best.json `started_s`), as best.json's
+  time_to_first_feasible_s and time_to_best_s do. A start without a solution is a grey cross
+  at its end, on the bottom edge.
+- spread: the final T_f of every solved start, one column per initial-guess kind, with the
+  count solved / run under each column.
+
+Colours follow the guess kind in both plots (GUESS_ORDER); the best start is a star.
+"""
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
+from matplotlib.transforms import blended_transform_factory  # noqa: E402
+
+from viz.snapshots import DPI  # noqa: E402
+
+GUESS_ORDER = ["straight", "perturbed", "detour", "yield", "perturbed feasible"]
+SIZE = (900, 430)
+
+
+def guess_kinds(runs):
+    """The guess kinds of `runs`, in GUESS_ORDER, unknown kinds last (alphabetically)."""
+    kinds = {r.get("guess") or "unknown" for r in runs}
+    return [k for k in GUESS_ORDER if k in kinds] + sorted(kinds - set(GUESS_ORDER))
+
+
+def guess_colors(kinds):
+    cmap = plt.get_cmap("tab10")
+    return {k: cmap((GUESS_ORDER.index(k) if k in GUESS_ORDER else 5 + i) % 10)
+            for i, k in enumerate(kinds)}
+
+
+def _reference_line(ax, scene):
+    if scene.get("lower_bound") is not None:
+        ax.axhline(scene["lower_bound"], color="0.25", lw=0.9, ls="--",
+                   label=f"lower bound {scene['lower_bound']:.4f} s")
+    elif scene.get("reference_time") is not None:
+        ax.axhline(scene["reference_time"], color="0.25", lw=0.9, ls=":",
+                   label=f"reference {scene['reference_time']:.4f} s")
+
+
+def start_curve(run, scene_start):
+    """[(search time since the scene's first hand-out, T_f)] of a solved start's new bests,
+    and its end time. Lines written before `history` existed give their best only."""
+    handed = run["finished_s"] - run["seconds"] - scene_start
+    hist = run.get("history") or [[run.get("time_to_best", run["seconds"]), run["T_f"]]]
+    return [(handed + t, tf) for t, tf in hist], handed + run["seconds"]
+
+
+def plot_progress(runs, scene, out):
+    fig, ax = plt.subplots(figsize=(SIZE[0] / DPI, SIZE[1] / DPI), dpi=DPI, layout="constrained")
+    scene_start = scene.get("started_s") or 0.0
+    kinds = guess_kinds(runs)
+    colors = guess_colors(kinds)
+    events, failed = [], []
+    for r in sorted(runs, key=lambda r: r["start"]):
+        if r["status"] != "solved" or r.get("T_f") is None:
+            failed.append(r["finished_s"] - scene_start)
+            continue
+        pts, end = start_curve(r, scene_start)
+        best = r["start"] == scene.get("start")
+        xs = [p[0] for p in pts] + [end]
+        ys = [p[1] for p in pts] + [pts[-1][1]]
+        ax.step(xs, ys, where="post", color=colors[r.get("guess") or "unknown"],
+                lw=2.2 if best else 1.0, alpha=1.0 if best else 0.75, zorder=3 if best else 2)
+        ax.plot(xs[:-1], ys[:-1], ls="none", marker="o", ms=2.5,
+                color=colors[r.get("guess") or "unknown"], zorder=3)
+        events += pts
+        if best:
+            ax.plot([pts[-1][0]], [pts[-1][1]], marker="*", ms=14, mfc="gold", mec="black",
+                    zorder=5)
+    if events:
+        events.sort()
+        xs, ys, low = [], [], float("inf")
+        for t, tf in events:
+            if tf < low:
+                low = tf
+                xs.append(t)
+                ys.append(tf)
+        end = max(r["finished_s"] - scene_start for r in runs)
+        ax.step(xs + [end], ys + [ys[-1]], where="post", color="black", lw=1.6, ls="-",
+                alpha=0.55, zorder=4)
+    if failed:
+        tr = blended_transform_factory(ax.transData, ax.transAxes)
+        ax.plot(failed, [0.02] * len(failed), ls="none", marker="x", ms=7, color="0.45",
+                transform=tr, zorder=5)
+    _reference_line(ax, scene)
+    handles = [Line2D([], [], color=colors[k], lw=1.5, label=k) for k in kinds]
+    handles.append(Line2D([], [], color="black", alpha=0.55, lw=1.6, label="best so far"))
+    handles.append(Line2D([], [], ls="none", marker="*", ms=12, mfc="gold", mec="black",
+                          label="best start"))
+    if failed:
+        handles.append(Line2D([], [], ls="none", marker="x", ms=7, color="0.45",
+                              label="no solution"))
+    handles += [h for h in ax.get_legend_handles_labels()[0] if h.get_label().startswith(
+        ("lower", "reference"))]
+    ax.legend(handles=handles, fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0),
+              frameon=False, borderaxespad=0.0)
+    ax.set_xlabel("search time since the scene's first hand-out [s]")
+    ax.set_ylabel("T_f [s]")
+    ax.set_title(f"{scene['name']}: T_f of every start against time", fontsize=11)
+    ax.set_xlim(left=0.0)
+    ax.grid(True, lw=0.4, color="0.88")
+    ax.tick_params(labelsize=8)
+    try:
+        fig.savefig(out, dpi=DPI)
+    finally:
+        plt.close(fig)
+
+
+def plot_spread(runs, scene, out):
+    fig, ax = plt.subplots(figsize=(SIZE[0] / DPI, SIZE[1] / DPI), dpi=DPI, layout="constrained")
+    kinds = guess_kinds(runs)
+    colors = guess_colors(kinds)
+    for x, k in enumerate(kinds):
+        mine = sorted((r for r in runs if (r.get("guess") or "unknown") == k),
+                      key=lambda r: r["start"])
+        solved = [r for r in mine if r["status"] == "solved" and r.get("T_f") is not None]
+        n = len(solved)
+        for m, r in enumerate(solved):
+            dx = 0.0 if n == 1 else 0.3 * (2.0 * m / (n - 1) - 1.0)  # spread evenly, no overlap
+            best = r["start"] == scene.get("start")
+            ax.plot([x + dx], [r["T_f"]], ls="none", marker="*" if best else "o",
+                    ms=14 if best else 6, mfc="gold" if best else colors[k],
+                    mec="black" if best else colors[k], alpha=1.0 if best else 0.8,
+                    zorder=4 if best else 3)
+        ax.annotate(f"{n} / {len(mine)} solved", (x, 0.0), xycoords=("data", "axes fraction"),
+                    xytext=(0, 4), textcoords="offset points", ha="center", va="bottom",
+                    fontsize=8, color="0.35")
+    _reference_line(ax, scene)
+    ax.set_xticks(range(len(kinds)), kinds, fontsize=9)
+    ax.set_xlim(-0.6, len(kinds) - 0.4)
+    lo, hi = ax.get_ylim()
+    ax.set_ylim(lo - 0.08 * (hi - lo), hi)  # room for the counts
+    ax.set_xlabel("initial guess")
+    ax.set_ylabel("final T_f [s]")
+    ax.set_title(f"{scene['name']}: final T_f of every start, by initial guess "
+                 "(star: the best)", fontsize=11)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False,
+                  borderaxespad=0.0)
+    ax.grid(True, axis="y", lw=0.4, color="0.88")
+    ax.tick_params(labelsize=8)
+    try:
+        fig.savefig(out, dpi=DPI)
+    finally:
+        plt.close(fig)

@@ -1,0 +1,174 @@
+"""Plots over time of one solution (scripts/report): controls, speeds, floor friction, contact
+forces and pair distances. Input: a solution read by viz.solution_file.load(path, full=True)
+with a trajectory.
+
+States (x, v, omega, distance) live at t_k = k h, k = 0..N_t, and are drawn as lines; a step's
+quantities (the control F, floor friction, contact impulses / h) hold over [t_k, t_k+1) and are
+drawn as stairs. Robots keep the colours of the snapshots (tab10); pairs get their own (Dark2).
+Dotted vertical lines mark the snapshot times, numbered as in the snapshot figure.
+"""
+import math
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from viz.snapshots import DPI, robot_colors  # noqa: E402
+
+WIDTH = 900           # pixels
+ROW_HEIGHT = 230      # pixels per subplot row
+MAX_PAIR_LINES = 12   # pairs drawn by name; the rest are summarised in the title
+
+
+def _grid(sol):
+    """t_k = k h, k = 0..N_t."""
+    h = sol["T_f"] / sol["N_t"]
+    return [k * h for k in range(sol["N_t"] + 1)]
+
+
+def _robots(sol):
+    """(robot, colour) pairs, in the snapshots' colours."""
+    return zip(sol["robots"], robot_colors(len(sol["robots"])))
+
+
+def _note(ax, text):
+    """A grey note in the middle of an axes with nothing (or nothing visible) to draw."""
+    ax.text(0.5, 0.5, text, transform=ax.transAxes, ha="center", va="center", color="0.4")
+
+
+def _figure(rows, title):
+    fig, axes = plt.subplots(rows, 1, sharex=True, squeeze=False,
+                             figsize=(WIDTH / DPI, (ROW_HEIGHT * rows + 70) / DPI), dpi=DPI,
+                             layout="constrained")
+    fig.suptitle(title, fontsize=11)
+    return fig, [a[0] for a in axes]
+
+
+def _finish(fig, axes, sol, times, out):
+    """Grid, snapshot-time lines, the legend of the first axes; saves and closes."""
+    _legend(axes[0])
+    for ax in axes:
+        ax.grid(True, lw=0.4, color="0.88")
+        ax.set_axisbelow(True)
+        ax.tick_params(labelsize=8)
+        ax.set_xlim(0.0, sol["T_f"])
+        for k, t in enumerate(times):
+            ax.axvline(t, color="0.6", lw=0.7, ls=":", zorder=0.5)
+    top = axes[0]
+    for k, t in enumerate(times):
+        top.annotate(str(k + 1), (t, 1.0), xycoords=("data", "axes fraction"),
+                     xytext=(0, 2), textcoords="offset points", ha="center", va="bottom",
+                     fontsize=7, color="0.4")
+    axes[-1].set_xlabel("t [s]")
+    try:
+        fig.savefig(out, dpi=DPI)
+    finally:
+        plt.close(fig)
+
+
+def _legend(ax, ncol=1):
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.005, 1.0), frameon=False,
+                  ncol=ncol, borderaxespad=0.0)
+
+
+def plot_controls(sol, out, times):
+    """F_x, F_y [N] per robot; dashed: the box bound +-F_max of each (Appendix A bounds each
+    component; a D_ef = 1 robot pushes along its axis)."""
+    t = _grid(sol)
+    fig, axes = _figure(2, f"{sol['scenario']}: controls (dashed: ±F_max)")
+    for rob, c in _robots(sol):
+        axes[0].stairs(rob["Fx"], t, color=c, lw=1.3, label=rob["name"], baseline=None)
+        axes[1].stairs(rob["Fy"], t, color=c, lw=1.3, baseline=None)
+        for ax in axes:
+            for v in (-rob["F_max"], rob["F_max"]):
+                ax.axhline(v, color=c, lw=0.8, ls="--", alpha=0.7)
+    axes[0].set_ylabel("F_x [N]")
+    axes[1].set_ylabel("F_y [N]")
+    _finish(fig, axes, sol, times, out)
+
+
+def plot_speeds(sol, out, times):
+    """|v| [m/s] and omega [rad/s] per robot."""
+    t = _grid(sol)
+    fig, axes = _figure(2, f"{sol['scenario']}: speeds")
+    for rob, c in _robots(sol):
+        axes[0].plot(t, [math.hypot(a, b) for a, b in zip(rob["vx"], rob["vy"])], color=c,
+                     lw=1.3, label=rob["name"])
+        axes[1].plot(t, rob["omega"], color=c, lw=1.3)
+    axes[0].set_ylabel("|v| [m/s]")
+    axes[1].set_ylabel("ω [rad/s]")
+    if max(abs(w) for rob in sol["robots"] for w in rob["omega"]) < 1e-9:
+        axes[1].set_ylim(-1.0, 1.0)  # roundoff only: do not blow it up to full height
+        _note(axes[1], "no robot turns (|ω| < 1e-9 rad/s)")
+    _finish(fig, axes, sol, times, out)
+
+
+def plot_floor_friction(sol, out, times):
+    """|floor friction| [N] per robot; dashed: its largest value mu M g."""
+    t = _grid(sol)
+    fig, axes = _figure(1, f"{sol['scenario']}: floor friction (dashed: μ M g)")
+    for rob, c in _robots(sol):
+        mag = [math.hypot(a, b) for a, b in zip(rob["friction_x"], rob["friction_y"])]
+        axes[0].stairs(mag, t, color=c, lw=1.3, label=rob["name"], baseline=None)
+        axes[0].axhline(rob["mu"] * rob["mass"] * sol["g"], color=c, lw=0.9, ls="--")
+    axes[0].set_ylabel("|friction| [N]")
+    _finish(fig, axes, sol, times, out)
+
+
+def _pair_label(sol, p):
+    return f"{sol['robots'][p['i']]['name']}–{sol['robots'][p['j']]['name']}"
+
+
+def _pair_colors(n):
+    cmap = plt.get_cmap("Dark2")
+    return [cmap(k % 8) for k in range(n)]
+
+
+def contact_pairs(sol, thr):
+    """The pairs whose normal force exceeds thr [N] at some step."""
+    return [p for p in sol["pairs"] if max(p["normal_force"], default=0.0) > thr]
+
+
+def plot_contact_forces(sol, out, times, thr):
+    """Normal and tangential contact force [N] of every pair that pushes (normal > thr)."""
+    t = _grid(sol)
+    pushing = contact_pairs(sol, thr)
+    fig, axes = _figure(2, f"{sol['scenario']}: contact forces "
+                           f"({len(pushing)} of {len(sol['pairs'])} pairs push)")
+    for p, c in zip(pushing[:MAX_PAIR_LINES], _pair_colors(len(pushing))):
+        axes[0].stairs(p["normal_force"], t, color=c, lw=1.3, label=_pair_label(sol, p),
+                       baseline=None)
+        axes[1].stairs(p["tangential_force"], t, color=c, lw=1.3, baseline=None)
+    if not pushing:
+        _note(axes[0], "no contact force in this solution")
+    axes[0].set_ylabel("normal [N]")
+    axes[1].set_ylabel("tangential [N]")
+    _finish(fig, axes, sol, times, out)
+
+
+def plot_distances(sol, out, times):
+    """The gap rho [m] of the pairs that come close (at most twice the mean diameter);
+    dashed: each mode's safe distance (avoid pairs) and 0 (contact)."""
+    t = _grid(sol)
+    near = 4.0 * sum(r["radius"] for r in sol["robots"]) / len(sol["robots"])
+    close = sorted((p for p in sol["pairs"] if min(p["distance"]) <= near),
+                   key=lambda p: min(p["distance"]))
+    shown = close[:MAX_PAIR_LINES]
+    which = (f" (the {len(shown)} closest of {len(sol['pairs'])} pairs)"
+             if len(shown) < len(sol["pairs"]) else "")
+    fig, axes = _figure(1, f"{sol['scenario']}: pair distances ρ{which} "
+                           "(dashed: safe distance)")
+    ax = axes[0]
+    for p, c in zip(shown, _pair_colors(len(shown))):
+        ax.plot(t, p["distance"], color=c, lw=1.3, label=f"{_pair_label(sol, p)} ({p['mode']})")
+    for d in sorted({p["safe_distance"] if p["mode"] == "avoid" else 0.0 for p in shown}):
+        ax.axhline(d, color="0.3", lw=0.8, ls="--")
+    if shown:
+        top = max(max(p["distance"]) for p in shown)
+        ax.set_ylim(-0.02 * near, min(top, 2.0 * near) * 1.05)
+    else:
+        _note(ax, "no pair comes within two diameters")
+    ax.set_ylabel("ρ [m]")
+    _finish(fig, axes, sol, times, out)

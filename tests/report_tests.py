@@ -1,0 +1,287 @@
+#!/usr/bin/python3
+"""Tests of scripts/report and scripts/screenshot_report (CTest report.build, report.screenshot;
+see tests/CMakeLists.txt). Run on Debian's python3 (Pillow, a dependency of matplotlib, reads
+the images).
+
+  report_tests.py DISCO SCRIPTS CONFIGS WORKDIR MODE
+MODE:
+  build       a real search (smoke benchmark, 2 starts per scene, plus a collision and a
+              scene without a solution), then scripts/report. Checks, from best.json and runs.jsonl and not
+              from the report's code: the page is offline (no script, no absolute URL, every
+              linked file inside the report folder); a summary row per scene with its T_f,
+              lower bound, gap, times, starts and certificate; per solved scene the snapshots,
+              an animated GIF whose disks move, the plots over time (pair distances for
+              scenes with pairs, contact forces for scenes with contact pairs) and the two search plots, none of them blank; a row per start
+              with its T_f and the best start marked; the scene without a solution says so,
+              with its status; the raw data copied byte for byte. Then bad input: a missing
+              directory and a corrupt best.json give exit 2 and name the file; a corrupt
+              runs.jsonl line is skipped with a warning naming the line; a missing solution
+              file gives exit 1 with the page saying so and the other scenes drawn; a
+              `disco solve` output gives a one-scene report without a search section.
+  screenshot  scripts/screenshot_report on the page built by `build`: a PNG of the window
+              size, not blank, in which the plots' colours appear (the images loaded offline).
+"""
+import filecmp
+import html.parser
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+from PIL import Image
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from script_checks import check, finish  # noqa: E402
+
+DISCO, SCRIPTS, CONFIGS, WORK, MODE = sys.argv[1:6]
+REPORT = os.path.join(SCRIPTS, "report")
+SHOT = os.path.join(SCRIPTS, "screenshot_report")
+ENV = dict(os.environ, OMP_NUM_THREADS="1")
+SEARCH = os.path.join(WORK, "search")
+PAGE = os.path.join(SEARCH, "report", "index.html")
+
+
+def run(cmd):
+    return subprocess.run(cmd, env=ENV, capture_output=True, text=True)
+
+
+class Page(html.parser.HTMLParser):
+    """Links, images, scripts, ids and table rows (as lists of cell texts, with the row's
+    class) of an HTML page."""
+
+    def __init__(self, text):
+        super().__init__()
+        self.refs, self.ids, self.rows, self.scripts = [], set(), [], 0
+        self.sections = {}  # h2 id -> text until the next h2
+        self._row = self._cell = None
+        self._section = None
+        self.feed(text)
+
+    def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        if "id" in a:
+            self.ids.add(a["id"])
+        if tag == "script":
+            self.scripts += 1
+        for key in ("src", "href"):
+            if key in a:
+                self.refs.append(a[key])
+        if tag == "h2":
+            self._section = a.get("id")
+            self.sections[self._section] = ""
+        if tag == "tr":
+            self._row = {"class": a.get("class", ""), "cells": []}
+        if tag in ("td", "th") and self._row is not None:
+            self._cell = ""
+
+    def handle_endtag(self, tag):
+        if tag in ("td", "th") and self._row is not None and self._cell is not None:
+            self._row["cells"].append(" ".join(self._cell.split()))
+            self._cell = None
+        if tag == "tr" and self._row is not None:
+            self.rows.append(self._row)
+            self._row = None
+
+    def handle_data(self, data):
+        if self._cell is not None:
+            self._cell += data
+        if self._section is not None:
+            self.sections[self._section] += data
+
+
+def anchor(name):
+    return "scene-" + "".join(c if c.isalnum() or c in "-_" else "-" for c in name)
+
+
+def not_blank(path):
+    """The fraction of pixels that are not near-white, and whether there are coloured ones
+    (robots, pairs and guesses are drawn in colour; axes and text are grey)."""
+    return not_blank_image(Image.open(path).convert("RGB"))
+
+
+def not_blank_image(im):
+    px = list(im.getdata())
+    ink = sum(1 for p in px if min(p) < 235) / len(px)
+    coloured = sum(1 for p in px if max(p) - min(p) > 80)
+    return ink, coloured > 50
+
+
+def build():
+    shutil.rmtree(SEARCH, ignore_errors=True)
+    scenes = [os.path.join(CONFIGS, "benchmarks", "smoke.yaml"),
+              os.path.join(CONFIGS, "stress", "forced_contact.yaml"),
+              os.path.join(CONFIGS, "stress", "off_axis_target.yaml")]
+    r = run([DISCO, "search", *scenes, "--starts", "2", "--seed", "1", "--out", SEARCH, "--quiet"])
+    check(r.returncode == 3, f"the search exits 3: one scene has no solution (got {r.returncode})")
+    r = run([REPORT, SEARCH])
+    check(r.returncode == 0, f"report exits 0 (got {r.returncode}: {r.stderr[-300:]})")
+    check(r.stdout == "" and "wrote " in r.stderr, "report: progress on stderr, stdout empty")
+    check(os.path.isfile(PAGE), "index.html written")
+    out = os.path.dirname(PAGE)
+    with open(PAGE) as f:
+        page = Page(f.read())
+    with open(os.path.join(SEARCH, "best.json")) as f:
+        best = json.load(f)
+    with open(os.path.join(SEARCH, "runs.jsonl")) as f:
+        runs = [json.loads(line) for line in f if line.strip()]
+
+    # Offline: nothing to fetch, nothing to run, every link inside the folder.
+    check(page.scripts == 0, "no <script>")
+    outside = [u for u in page.refs if "://" in u or u.startswith(("//", "/", "..", "data:"))]
+    check(not outside, f"no absolute or outside links ({outside[:3]})")
+    missing = [u for u in page.refs if not u.startswith("#")
+               and not os.path.isfile(os.path.join(out, u))]
+    check(not missing, f"every linked file exists ({missing[:3]})")
+    internal = [u[1:] for u in page.refs if u.startswith("#")]
+    check(all(i in page.ids for i in internal), "every in-page link has its target")
+    for name in ("best.json", "runs.jsonl"):
+        check(filecmp.cmp(os.path.join(SEARCH, name), os.path.join(out, "data", name), False),
+              f"data/{name} is a byte copy")
+
+    # The summary: a row per scene, its numbers from best.json.
+    summary = {row["cells"][0]: row["cells"] for row in page.rows if row["cells"]
+               and row["cells"][0] in best["scenes"]}
+    check(sorted(summary) == sorted(best["scenes"]), f"a summary row per scene ({sorted(summary)})")
+    for name, s in best["scenes"].items():
+        cells = " | ".join(summary.get(name, []))
+        want = [f"{s['starts_run']} / {s['starts_solved']}"]
+        if s["T_f"] is not None:
+            # The gap is to the lower bound, or (robots that can be pushed have none) to
+            # the reference time, marked so.
+            lb, ref = s["lower_bound"], s["reference_time"]
+            want += ([f"{lb:.6f}", f"{100 * (s['T_f'] - lb) / lb:.2f} %"] if lb is not None
+                     else ["none", f"{100 * (s['T_f'] - ref) / ref:.2f} % vs ref"])
+            want += [f"{s['T_f']:.6f}",
+                     f"{s['time_to_first_feasible_s']:.1f}", f"{s['time_to_best_s']:.1f}",
+                     f"{s['certificate']['max_violation']:.1e} / "
+                     f"{s['certificate']['max_complementarity']:.1e}",
+                     f"start {s['start']}:"]
+        else:
+            want += ["no certified solution"]
+        absent = [w for w in want if w not in cells]
+        check(not absent, f"{name}: summary row holds {want} (missing {absent}; row: {cells})")
+
+    # Per scene: its section, figures and start table.
+    for name, s in best["scenes"].items():
+        sec = anchor(name)
+        check(sec in page.ids, f"{name}: has a section")
+        text = page.sections.get(sec, "")
+        mine = [r for r in runs if r["scene"] == name]
+        if s["T_f"] is None:
+            check("no certified solution" in text and all(r["status"] in text for r in mine),
+                  f"{name}: the section says there is no certified solution, and why")
+            check(not os.path.exists(os.path.join(out, "img", f"{name}_motion.gif")),
+                  f"{name}: no animation without a trajectory")
+        else:
+            with open(os.path.join(SEARCH, s["solution"])) as f:
+                sol = json.load(f)
+            kinds = ["snapshots.png", "controls.png", "speeds.png", "floor_friction.png",
+                     "progress.png", "spread.png"]
+            # Pair distances for scenes with pairs; contact forces for contact pairs (in
+            # forced_contact the collision pushes, so the plot has coloured lines).
+            contact = any(p["mode"] == "contact" for p in sol["pairs"])
+            kinds += ["distances.png"] * bool(sol["pairs"]) + ["contact_forces.png"] * contact
+            for k, want in (("distances.png", bool(sol["pairs"])), ("contact_forces.png", contact)):
+                check(os.path.exists(os.path.join(out, "img", f"{name}_{k}")) == want,
+                      f"{name}: {k} {'drawn' if want else 'left out'}")
+            for k in kinds:
+                rel = f"img/{name}_{k}"
+                path = os.path.join(out, rel)
+                ok = rel in page.refs and os.path.isfile(path)
+                ink, blue = not_blank(path) if ok else (0, False)
+                check(ok and ink > 0.01 and blue,
+                      f"{name}: {k} shown, drawn ({100 * ink:.1f} % ink), in colour")
+            gif = os.path.join(out, "img", f"{name}_motion.gif")
+            check(f"img/{name}_motion.gif" in page.refs and os.path.isfile(gif),
+                  f"{name}: animation shown")
+            if os.path.isfile(gif):
+                im = Image.open(gif)
+                frames = im.n_frames
+                first = im.convert("RGB").tobytes()
+                im.seek(frames - 1)
+                last = im.convert("RGB").tobytes()
+                check(im.format == "GIF" and frames >= 20 and first != last and im.size == (720, 540),
+                      f"{name}: GIF 720x540 with {frames} frames, the last unlike the first")
+                check(im.info.get("loop") == 0, f"{name}: the GIF loops")
+            check(filecmp.cmp(os.path.join(SEARCH, s["solution"]),
+                              os.path.join(out, "data", "best", f"{name}.json"), False),
+                  f"{name}: its solution file copied byte for byte")
+        # A row per start: start index first, T_f in it; the best one marked.
+        starts = {}
+        for row in page.rows:
+            cells = row["cells"]
+            if len(cells) >= 12 and cells[0].isdigit():
+                starts.setdefault(cells[0], []).append(row)
+        for r in mine:
+            t = f"{r['T_f']:.6f}" if r["T_f"] is not None else "–"
+            found = [row for row in starts.get(str(r["start"]), [])
+                     if t in row["cells"] and r["status"] in " ".join(row["cells"])]
+            check(len(found) >= 1, f"{name} start {r['start']}: a table row with T_f {t}")
+            if s["T_f"] is not None and r["start"] == s["start"]:
+                check(any(row["class"] == "best" for row in found), f"{name}: best start marked")
+
+    # Bad input.
+    r = run([REPORT, os.path.join(WORK, "no_such_dir")])
+    check(r.returncode == 2 and "no_such_dir" in r.stderr, "a missing directory: exit 2, named")
+    bad = os.path.join(WORK, "bad")
+    shutil.rmtree(bad, ignore_errors=True)
+    shutil.copytree(SEARCH, bad, ignore=shutil.ignore_patterns("report"))
+    with open(os.path.join(bad, "best.json"), "w") as f:
+        f.write('{"scenes": ')
+    r = run([REPORT, bad])
+    check(r.returncode == 2 and "best.json" in r.stderr and "not valid JSON" in r.stderr
+          and not os.path.exists(os.path.join(bad, "report", "index.html")),
+          f"a corrupt best.json: exit 2, named, no page ({r.stderr.strip()[:160]})")
+    shutil.copyfile(os.path.join(SEARCH, "best.json"), os.path.join(bad, "best.json"))
+    with open(os.path.join(bad, "runs.jsonl"), "a") as f:
+        f.write("{not json\n")
+    lines = sum(1 for _ in open(os.path.join(bad, "runs.jsonl")))
+    solved = next(n for n, s in best["scenes"].items() if s["T_f"] is not None)
+    os.remove(os.path.join(bad, best["scenes"][solved]["solution"]))
+    r = run([REPORT, bad])
+    check(f"runs.jsonl:{lines}: skipped" in r.stderr, "a corrupt runs.jsonl line: skipped, named")
+    check(r.returncode == 1, f"a missing solution file: exit 1 (got {r.returncode})")
+    with open(os.path.join(bad, "report", "index.html")) as f:
+        text = f.read()
+    check(f"{solved}.json: missing" in text, "the page names the missing solution file")
+    others = [n for n, s in best["scenes"].items() if s["T_f"] is not None and n != solved]
+    check(all(os.path.isfile(os.path.join(bad, "report", "img", f"{n}_snapshots.png"))
+              for n in others) and others, "the other scenes are drawn")
+
+    # A `disco solve` output.
+    one = os.path.join(WORK, "solve")
+    r = run([DISCO, "solve", os.path.join(CONFIGS, "scenarios", "one_robot_axis.yaml"),
+             "--set", "scene.steps=20", "--out", one, "--quiet"])
+    r = run([REPORT, one, "--no-animation"])
+    with open(os.path.join(one, "report", "index.html")) as f:
+        p = Page(f.read())
+    check(r.returncode == 0 and anchor("one_robot_axis") in p.ids and
+          "img/one_robot_axis_controls.png" in p.refs and
+          not any("progress" in u or u.endswith(".gif") for u in p.refs),
+          "a solve output: one scene, its plots, no search plots, --no-animation honoured")
+
+
+def screenshot():
+    png = os.path.join(WORK, "screenshot.png")
+    r = run([SHOT, PAGE, "-o", png, "--width", "1280", "--height", "2400"])
+    check(r.returncode == 0 and os.path.isfile(png), f"screenshot exits 0 ({r.stderr.strip()[-300:]})")
+    if os.path.isfile(png):
+        im = Image.open(png)
+        check(im.size == (1280, 2400), f"the window's size ({im.size})")
+        ink, blue = not_blank(png)
+        check(ink > 0.02, f"not blank ({100 * ink:.1f} % ink)")
+        check(blue, "the plots' colours appear: the images loaded offline")
+        top = im.convert("RGB").crop((0, 0, 1280, 120))
+        check(not_blank_image(top)[0] > 0.005, "the title is rendered at the top")
+    r = run([SHOT, os.path.join(WORK, "no_such_page.html")])
+    check(r.returncode == 2 and "no such file" in r.stderr, "a missing page: exit 2")
+
+
+if MODE == "build":
+    build()
+elif MODE == "screenshot":
+    screenshot()
+else:
+    sys.exit(f"unknown mode {MODE}")
+finish(f"report_tests {MODE}")
