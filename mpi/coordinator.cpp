@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <condition_variable>
 #include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -99,7 +100,8 @@ class Search {
   // A scene whose own time limit has passed (counted from the hand-out of its
   // first start) gets no more starts. A task's budget is the smallest of the
   // start's, the scene's and the search's remaining time.
-  std::optional<Task> next() {
+  // `rank` will run it (for the live status line).
+  std::optional<Task> next(int rank) {
     std::lock_guard<std::mutex> lock(mutex_);
     const double elapsed = seconds();
     if (options_.time_limit > 0 && elapsed >= options_.time_limit) {
@@ -121,6 +123,7 @@ class Search {
       if (job.time_limit > 0) cap(scene_left);
       if (options_.time_limit > 0) cap(options_.time_limit - elapsed);
       t.budget = budget;
+      running_[{t.scene, t.start}] = {rank, elapsed};
       return t;
     }
     return std::nullopt;
@@ -135,18 +138,40 @@ class Search {
     ::fsync(fileno(runs_));  // a kill (or a crash) loses no finished start
     ++finished_;
     const int s = scene_index(o.scene);
+    if (s >= 0) running_.erase({s, o.start});
     const bool improved = update(s, o);
     if (improved && solution != nullptr)
       write_json_file(options_.out + "/best/" + o.scene + ".json", *solution);
     write_best();
+    spdlog::info("[{}/{}] {} start {} (rank {}): {}{} in {:.1f} s | best {} | {}", finished_,
+                 total_, o.scene, o.start, o.rank, o.status,
+                 o.solved() ? fmt::format(" T_f {:.6f}", o.T_f) : std::string(), o.seconds,
+                 best_summary(s), clock_locked());
+  }
+
+  // The live status line, most important first (a terminal cuts the end):
+  // starts done / total, elapsed and ETA, the best T_f per scene, the starts
+  // running (scene #start, rank, seconds so far).
+  std::string status_text() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const double now = seconds();
+    std::string running;
+    for (const auto& [task, r] : running_)
+      running += fmt::format("{}{} #{} r{} {:.0f}s", running.empty() ? "" : ", ",
+                             plan_.scenes[task.first].scene.name, task.second, r.rank,
+                             now - r.handed_s);
+    return fmt::format("[{}/{}] {} | best {} | running: {}", finished_, total_, clock_locked(),
+                       best_summary(-1), running.empty() ? "-" : running);
+  }
+
+  // "elapsed HH:MM:SS ETA HH:MM:SS": the ETA from the mean time per start run
+  // here, capped by the time limits left.
+  std::string clock_locked() const {
     const double elapsed = seconds();
     const int ran_now = finished_ - resumed_;
     double eta = ran_now > 0 ? elapsed / ran_now * (total_ - finished_) : 0.0;
     eta = std::min(eta, time_left(elapsed));
-    spdlog::info("[{}/{}] {} start {} (rank {}): {}{} in {:.1f} s | best {} | elapsed {} ETA {}",
-                 finished_, total_, o.scene, o.start, o.rank, o.status,
-                 o.solved() ? fmt::format(" T_f {:.6f}", o.T_f) : std::string(), o.seconds,
-                 best_summary(s), clock_text(elapsed), clock_text(eta));
+    return "elapsed " + clock_text(elapsed) + " ETA " + (ran_now > 0 ? clock_text(eta) : "-");
   }
 
   // At most this long until the time limits stop the search: the search's own
@@ -195,14 +220,19 @@ class Search {
   double seconds() const { return std::chrono::duration<double>(Clock::now() - t0_).count(); }
 
   // Best T_f per scene (every scene when there are at most four, else the
-  // scene `s`), for the progress line.
+  // scene `s`, or with s < 0 how many scenes are solved), for the progress lines.
   std::string best_summary(int s) const {
     auto one = [&](std::size_t k) {
       const Best& b = best_[k];
       return plan_.scenes[k].scene.name + " " +
              (b.start >= 0 ? fmt::format("{:.6f}", b.T_f) : std::string("-"));
     };
-    if (best_.size() > 4) return s >= 0 ? one(static_cast<std::size_t>(s)) : std::string();
+    if (best_.size() > 4) {
+      if (s >= 0) return one(static_cast<std::size_t>(s));
+      const auto solved = std::count_if(best_.begin(), best_.end(),
+                                        [](const Best& b) { return b.start >= 0; });
+      return fmt::format("{} of {} scenes solved", solved, best_.size());
+    }
     std::string out;
     for (std::size_t k = 0; k < best_.size(); ++k) out += (k ? ", " : "") + one(k);
     return out;
@@ -318,6 +348,11 @@ class Search {
   std::size_t next_ = 0;
   int total_ = 0, finished_ = 0, resumed_ = 0;
   bool time_limited_ = false;
+  struct Running {
+    int rank = 0;
+    double handed_s = 0.0;  // search time of its hand-out
+  };
+  std::map<std::pair<int, int>, Running> running_;  // (scene, start) handed out, not recorded
   std::vector<Best> best_;
   std::FILE* runs_ = nullptr;
 };
@@ -384,7 +419,7 @@ void coordinator_loop(Search& search, int workers) {
       const StartOutcome o = StartOutcome::from_json(msg["outcome"]);
       search.record(o, msg.contains("solution") ? &msg["solution"] : nullptr);
     }
-    if (const auto t = search.next()) {
+    if (const auto t = search.next(st.MPI_SOURCE)) {
       send_string(json{{"scene", t->scene}, {"start", t->start}, {"budget", t->budget}}.dump(),
                   st.MPI_SOURCE, kTagTask);
     } else {
@@ -422,12 +457,34 @@ int run_search(const SearchOptions& o) {
   Search search(c.plan, o);
   std::thread coordinator;
   if (size > 1) coordinator = std::thread([&] { coordinator_loop(search, size - 1); });
-  while (const auto t = search.next()) {  // rank 0 works too
+  // The live line: refreshed every second by a thread that only reads the
+  // search's state and calls on_status (no MPI, no solver).
+  std::mutex tick_mutex;
+  std::condition_variable tick;
+  bool done = false;
+  std::thread ticker;
+  if (o.on_status) {
+    ticker = std::thread([&] {
+      std::unique_lock<std::mutex> lock(tick_mutex);
+      while (!tick.wait_for(lock, std::chrono::seconds(1), [&] { return done; }))
+        o.on_status(search.status_text());
+      o.on_status("");
+    });
+  }
+  while (const auto t = search.next(0)) {  // rank 0 works too
     json solution;
     const StartOutcome out = run_task(c, *t, &solution);
     search.record(out, out.solved() ? &solution : nullptr);
   }
   if (coordinator.joinable()) coordinator.join();
+  if (ticker.joinable()) {
+    {
+      std::lock_guard<std::mutex> lock(tick_mutex);
+      done = true;
+    }
+    tick.notify_one();
+    ticker.join();
+  }
   search.finish();
   spdlog::info("wrote {}/runs.jsonl, {}/best.json; an HTML report: scripts/report {}", o.out,
                o.out, o.out);

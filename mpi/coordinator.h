@@ -25,6 +25,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,9 @@ struct SearchOptions {
   double time_limit = 0.0;         // s for the whole search; 0 = none
   std::string out = "runs/search";
   bool resume = false;
+  // Rank 0: called about once a second with the live status line (starts done,
+  // elapsed, ETA, best T_f, starts running) and with "" at the end. Unset: none.
+  std::function<void(const std::string&)> on_status;
 };
 
 // Runs the search; call between MPI_Init_thread and MPI_Finalize on every

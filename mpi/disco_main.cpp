@@ -7,7 +7,8 @@
 //                [--quiet | --verbose]
 //
 // Logs go to stderr and results to files; nothing is written to stdout except
-// --help. --quiet keeps warnings and errors only; --verbose adds every Ipopt
+// --help. On a terminal, `search` keeps a live status line below its log
+// (mpi/live_line.h). --quiet keeps warnings and errors only; --verbose adds every Ipopt
 // solve inside an elastic-mode solve and, under search, every start's solve log.
 //
 // Finds a feasible point at a large fixed T_f, then runs the paper's inexact
@@ -36,6 +37,7 @@
 #include "core/model/scene_yaml.h"
 #include "core/util/errors.h"
 #include "mpi/coordinator.h"
+#include "mpi/live_line.h"
 #include "search/solve_scene.h"
 #include "search/start.h"
 
@@ -71,8 +73,8 @@ struct Verbosity {
 };
 
 // `disco search`: MPI is initialised here and only here.
-int run_search_command(const SearchOptions& o, int threads, const Verbosity& verbosity, int& argc,
-                       char**& argv) {
+int run_search_command(SearchOptions o, int threads, const Verbosity& verbosity,
+                       const std::shared_ptr<LiveLineSink>& sink, int& argc, char**& argv) {
   int provided = 0;
   MPI_Init_thread(&argc, &argv, MPI_THREAD_SERIALIZED, &provided);
   int rank = 0, size = 1;
@@ -86,6 +88,9 @@ int run_search_command(const SearchOptions& o, int threads, const Verbosity& ver
     spdlog::set_level(verbosity.level(rank == 0));
     // Every rank logs under --verbose: say which.
     if (verbosity.verbose && size > 1) spdlog::set_pattern(fmt::format("%^[rank {}] %v%$", rank));
+    // The live status line: rank 0, on a terminal, unless --quiet.
+    if (rank == 0 && !verbosity.quiet && is_terminal(stderr))
+      o.on_status = [sink](const std::string& text) { sink->set_status(text); };
     set_threads(threads);
     try {
       code = run_search(o);
@@ -180,8 +185,9 @@ int run_solve(const SolveOptions& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  auto logger = spdlog::stderr_color_mt("disco");
-  spdlog::set_default_logger(logger);
+  auto sink = std::make_shared<LiveLineSink>(
+      std::make_shared<spdlog::sinks::stderr_color_sink_mt>());
+  spdlog::set_default_logger(std::make_shared<spdlog::logger>("disco", sink));
   spdlog::set_pattern("%^%v%$");
 
   CLI::App app{"disco: minimum-time control of disk robots with friction (elastic-mode MPCC)"};
@@ -230,7 +236,7 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   if (scmd->parsed())
-    return run_search_command(search, search_threads, search_verbosity, argc, argv);
+    return run_search_command(search, search_threads, search_verbosity, sink, argc, argv);
   spdlog::set_level(solve_verbosity.level(true));
   try {
     if (cmd->parsed()) return run_solve(solve);

@@ -17,7 +17,9 @@ MODE:
               directory and a corrupt best.json give exit 2 and name the file; a corrupt
               runs.jsonl line is skipped with a warning naming the line; a missing solution
               file gives exit 1 with the page saying so and the other scenes drawn; a
-              `disco solve` output gives a one-scene report without a search section.
+              `disco solve` output gives a one-scene report without a search section; lines of
+              another seed are left out, older lines (no history, schedule or times) are
+              drawn, and a resumed search's scene times are marked.
   screenshot  scripts/screenshot_report on the page built by `build`: a PNG of the window
               size, not blank, in which the plots' colours appear (the images loaded offline).
 """
@@ -53,6 +55,7 @@ class Page(html.parser.HTMLParser):
     def __init__(self, text):
         super().__init__()
         self.refs, self.ids, self.rows, self.scripts = [], set(), [], 0
+        self.facts = {}  # (h2 id, dt text) -> dd text
         self.sections = {}  # h2 id -> text until the next h2
         self._row = self._cell = None
         self._section = None
@@ -71,11 +74,22 @@ class Page(html.parser.HTMLParser):
             self._section = a.get("id")
             self.sections[self._section] = ""
         if tag == "tr":
-            self._row = {"class": a.get("class", ""), "cells": []}
+            self._row = {"class": a.get("class", ""), "cells": [], "section": self._section}
         if tag in ("td", "th") and self._row is not None:
             self._cell = ""
+        if tag == "dt":
+            self._dt = ""
+        if tag == "dd":
+            self._dd = ""
+
+    _dt = _dd = None
 
     def handle_endtag(self, tag):
+        if tag == "dt":
+            self._key, self._dt = " ".join(self._dt.split()), None
+        if tag == "dd":
+            self.facts[(self._section, self._key)] = " ".join(self._dd.split())
+            self._dd = None
         if tag in ("td", "th") and self._row is not None and self._cell is not None:
             self._row["cells"].append(" ".join(self._cell.split()))
             self._cell = None
@@ -84,6 +98,10 @@ class Page(html.parser.HTMLParser):
             self._row = None
 
     def handle_data(self, data):
+        if self._dt is not None:
+            self._dt += data
+        if self._dd is not None:
+            self._dd += data
         if self._cell is not None:
             self._cell += data
         if self._section is not None:
@@ -169,8 +187,9 @@ def build():
         text = page.sections.get(sec, "")
         mine = [r for r in runs if r["scene"] == name]
         if s["T_f"] is None:
-            check("no certified solution" in text and all(r["status"] in text for r in mine),
-                  f"{name}: the section says there is no certified solution, and why")
+            status = page.facts.get((sec, "status"), "")
+            check("no certified solution" in status and all(r["status"] in status for r in mine),
+                  f"{name}: its status says there is no certified solution, and why ({status})")
             check(not os.path.exists(os.path.join(out, "img", f"{name}_motion.gif")),
                   f"{name}: no animation without a trajectory")
         else:
@@ -198,12 +217,18 @@ def build():
             if os.path.isfile(gif):
                 im = Image.open(gif)
                 frames = im.n_frames
-                first = im.convert("RGB").tobytes()
-                im.seek(frames - 1)
-                last = im.convert("RGB").tobytes()
-                check(im.format == "GIF" and frames >= 20 and first != last and im.size == (720, 540),
-                      f"{name}: GIF 720x540 with {frames} frames, the last unlike the first")
+                below_title = (0, 40, 720, 540)  # the title's time changes anyway
+                first = im.convert("RGB").crop(below_title).tobytes()
+                im.seek(frames // 2)
+                middle = im.convert("RGB").crop(below_title).tobytes()
+                check(im.format == "GIF" and frames >= 20 and first != middle and im.size == (720, 540),
+                      f"{name}: GIF 720x540 with {frames} frames, the disks move")
                 check(im.info.get("loop") == 0, f"{name}: the GIF loops")
+                # Real time: frame delays (whole 1/100 s) times the frames span T_f to 1 %.
+                span = (frames - 1) * im.info["duration"] / 1000.0
+                check(im.info["duration"] % 10 == 0 and abs(span / sol["T_f"] - 1.0) <= 0.01,
+                      f"{name}: plays in real time ({frames - 1} x {im.info['duration']} ms = "
+                      f"{span:.3f} s for T_f {sol['T_f']:.3f} s)")
             check(filecmp.cmp(os.path.join(SEARCH, s["solution"]),
                               os.path.join(out, "data", "best", f"{name}.json"), False),
                   f"{name}: its solution file copied byte for byte")
@@ -211,7 +236,7 @@ def build():
         starts = {}
         for row in page.rows:
             cells = row["cells"]
-            if len(cells) >= 12 and cells[0].isdigit():
+            if row["section"] == sec and len(cells) >= 12 and cells[0].isdigit():
                 starts.setdefault(cells[0], []).append(row)
         for r in mine:
             t = f"{r['T_f']:.6f}" if r["T_f"] is not None else "–"
@@ -220,6 +245,8 @@ def build():
             check(len(found) >= 1, f"{name} start {r['start']}: a table row with T_f {t}")
             if s["T_f"] is not None and r["start"] == s["start"]:
                 check(any(row["class"] == "best" for row in found), f"{name}: best start marked")
+        marked = [row for rows in starts.values() for row in rows if row["class"] == "best"]
+        check(len(marked) == (s["T_f"] is not None), f"{name}: one best row ({len(marked)})")
 
     # Bad input.
     r = run([REPORT, os.path.join(WORK, "no_such_dir")])
@@ -249,17 +276,48 @@ def build():
     check(all(os.path.isfile(os.path.join(bad, "report", "img", f"{n}_snapshots.png"))
               for n in others) and others, "the other scenes are drawn")
 
+    # Lines of another seed (a --resume with another --seed appends them; the search ignores
+    # them) and lines written before history, guess, schedule and the times existed.
+    mixed = os.path.join(WORK, "mixed")
+    shutil.rmtree(mixed, ignore_errors=True)
+    shutil.copytree(SEARCH, mixed, ignore=shutil.ignore_patterns("report"))
+    with open(os.path.join(mixed, "runs.jsonl"), "w") as f:
+        for k, r in enumerate(runs):
+            r = dict(r)
+            if k % 2:
+                for key in ("history", "guess", "schedule", "finished_s", "seconds"):
+                    r.pop(key, None)
+            elif k < len(runs) // 2:
+                r["finished_s"] += 1000.0  # an earlier run's clock: the next line "resumes"
+            f.write(json.dumps(r) + "\n")
+        f.write(json.dumps(dict(runs[0], seed=99, T_f=0.5, start=0)) + "\n")
+    r = run([REPORT, mixed])
+    check(r.returncode == 0, f"older lines and another seed's: exit 0 ({r.stderr.strip()[-200:]})")
+    check("1 line(s) of another seed" in r.stderr, "another seed's line: left out, with a warning")
+    with open(os.path.join(mixed, "report", "index.html")) as f:
+        p = Page(f.read())
+    best_rows = [row for row in p.rows if row["class"] == "best"]
+    check(len(best_rows) == sum(s["T_f"] is not None for s in best["scenes"].values()) and
+          not any("0.500000" in row["cells"] for row in p.rows),
+          "one best row per solved scene; the other seed's T_f nowhere")
+    resumed = [row["cells"][0] for row in p.rows if row["section"] == "summary"
+               and "– (resumed)" in row["cells"]]
+    check(bool(resumed), f"a resumed search: scene times shown as resumed ({resumed})")
+
     # A `disco solve` output.
     one = os.path.join(WORK, "solve")
     r = run([DISCO, "solve", os.path.join(CONFIGS, "scenarios", "one_robot_axis.yaml"),
              "--set", "scene.steps=20", "--out", one, "--quiet"])
+    check(r.returncode == 0, "disco solve of one_robot_axis exits 0")
     r = run([REPORT, one, "--no-animation"])
     with open(os.path.join(one, "report", "index.html")) as f:
         p = Page(f.read())
     check(r.returncode == 0 and anchor("one_robot_axis") in p.ids and
           "img/one_robot_axis_controls.png" in p.refs and
-          not any("progress" in u or u.endswith(".gif") for u in p.refs),
-          "a solve output: one scene, its plots, no search plots, --no-animation honoured")
+          not any("progress" in u or u.endswith(".gif") for u in p.refs) and
+          "NLP solves" in p.facts.get((anchor("one_robot_axis"), "solve"), ""),
+          "a solve output: one scene, its plots and solve time, no search plots, "
+          "--no-animation honoured")
 
 
 def screenshot():
@@ -269,9 +327,12 @@ def screenshot():
     if os.path.isfile(png):
         im = Image.open(png)
         check(im.size == (1280, 2400), f"the window's size ({im.size})")
-        ink, blue = not_blank(png)
+        ink, _ = not_blank(png)
         check(ink > 0.02, f"not blank ({100 * ink:.1f} % ink)")
-        check(blue, "the plots' colours appear: the images loaded offline")
+        # Robot 1's orange (matplotlib's tab10) is in the plots only, not in the page's CSS.
+        orange = sum(1 for p in im.convert("RGB").getdata()
+                     if abs(p[0] - 255) + abs(p[1] - 127) + abs(p[2] - 14) < 40)
+        check(orange > 500, f"the plots appear: the images loaded offline ({orange} orange pixels)")
         top = im.convert("RGB").crop((0, 0, 1280, 120))
         check(not_blank_image(top)[0] > 0.005, "the title is rendered at the top")
     r = run([SHOT, os.path.join(WORK, "no_such_page.html")])

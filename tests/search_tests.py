@@ -13,7 +13,7 @@ MODE:
                (starts in flight get only the time left), says so in best.json, and
                keeps the best of what finished.
   logging      logs go to stderr and results to files (stdout stays empty): the progress
-               line by default, nothing with --quiet, every start's solve log and every
+               line by default, a live status line on a terminal only, nothing with --quiet, every start's solve log and every
                Ipopt solve with --verbose (each line naming its rank); the same for
                `disco solve`; --quiet with --verbose is a usage error (exit 2).
 """
@@ -153,6 +153,8 @@ elif MODE == "logging":
           f"default: one progress line per start with best and ETA ({progress})")
     check(progress[-1].startswith("[2/2]"), "default: the last line counts 2 of 2")
     check(not any("ipopt" in l for l in lines), "default: no Ipopt lines")
+    check("\r" not in r.stderr and "\x1b[" not in r.stderr,
+          "default, not on a terminal: no live line, no control characters")
     check(best(out)["starts_finished"] == 2, "default: results in best.json")
 
     out = os.path.join(WORK, "quiet")
@@ -172,6 +174,26 @@ elif MODE == "logging":
               f"--verbose: {scene}'s solve log")
     check(sum("ipopt elastic" in l for l in lines) >= 2, "--verbose: the Ipopt solves")
     check(sum("ipopt" in l and "[rank 1]" in l for l in lines) >= 1, "--verbose: from rank 1 too")
+
+    # On a terminal (a pseudo-terminal from script(1)): the live line, erased before each
+    # log line and drawn again below it, cut to the terminal's width.
+    out = os.path.join(WORK, "terminal")
+    shutil.rmtree(out, ignore_errors=True)
+    swap = os.path.join(os.path.dirname(BENCH), "../scenarios/two_robots_swap_avoid.yaml")
+    cmd = f"{DISCO} search {swap} --set scene.steps=15 --starts 3 --out {out}"
+    r = subprocess.run(["script", "-qec", cmd, "/dev/null"], env=ENV, capture_output=True)
+    tty = r.stdout.decode(errors="replace")  # as bytes: "\r" kept
+    # After each erase ("\r\x1b[K"): log lines ("...\r\n"), then the status drawn anew.
+    status = [seg.split("\r\n")[-1] for seg in tty.split("\r\x1b[K")]
+    status = [x for x in status if x.startswith("[") and " ETA " in x]
+    check(r.returncode == 0 and "[3/3] two_robots_swap_avoid start" in tty,
+          f"on a terminal: exit 0, the progress lines ({r.returncode})")
+    check(any(x.startswith("[1/3] elapsed ") and " | best two_robots_swap_avoid 2.3" in x
+              for x in status),
+          f"on a terminal: the live line ({status[:2]})")
+    check(status and all(len(x) < 80 for x in status),
+          "on a terminal: the live line fits its width (80 columns)")
+    check(best(out)["starts_finished"] == 3, "on a terminal: results written")
 
     sol = os.path.join(WORK, "solve")
     solve = [DISCO, "solve", os.path.join(os.path.dirname(BENCH), "../scenarios/one_robot_axis.yaml"),

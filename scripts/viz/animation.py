@@ -2,8 +2,9 @@
 robot's disk with its orientation line, the path travelled so far over the whole path (faint),
 start dots and targets, red dots at pairs in contact, and the time.
 
-Frames are evenly spaced over [0, T_f] and played at `fps`; the GIF plays in real time unless
-that needs more than `max_frames` frames, in which case it plays faster and says by how much.
+Frames are evenly spaced over [0, T_f] and played at about `fps` (frame_plan); the GIF plays in
+real time (to 1 %) unless that needs more than `max_frames` frames, in which case it plays
+faster and says by how much.
 The static part (axes, paths, targets) is drawn once; each frame restores it and draws only
 the moving artists (matplotlib's blitting), then Pillow (python3-pil, a dependency of Debian's
 python3-matplotlib) writes the GIF.
@@ -23,19 +24,23 @@ from viz.solution_file import contacts_at, default_contact_threshold, state_at  
 
 
 def frame_plan(T_f, fps, max_frames):
-    """(frames, playback fps, speed-up): frames >= 2 evenly spaced over [0, T_f]. In real time
-    (speed-up 1) the playback rate is set so the frames span T_f exactly; with more than
-    max_frames needed, max_frames are played at fps, faster than real time."""
-    frames = int(math.ceil(T_f * fps)) + 1
-    if frames <= max_frames:
-        frames = max(2, frames)
-        return frames, (frames - 1) / T_f, 1.0
-    return max_frames, fps, T_f * fps / (max_frames - 1)
+    """(frames, delay in 1/100 s, speed-up). GIF stores each frame's delay in whole hundredths
+    of a second (and browsers slow delays under 2/100 s down to 1/10 s), so the delay is
+    round(100 / fps), at least 2. The frames, evenly spaced over [0, T_f], are as many as fill
+    T_f at that delay (nearest count), at most max_frames (then faster than real time)."""
+    delay = max(2, round(100.0 / fps))
+    frames = max(2, min(max_frames, round(T_f * 100.0 / delay) + 1))
+    return frames, delay, T_f / ((frames - 1) * delay / 100.0)
+
+
+def speed_text(speed):
+    """How the GIF plays: "real time" within 1 %, else the factor."""
+    return "real time" if abs(speed - 1.0) <= 0.01 else f"{speed:.2f}× real time"
 
 
 def write_gif(sol, out, fps=20, max_frames=160, size=(720, 540)):
     """Writes the animation of `sol` (with a trajectory) to `out`; returns (frames, speed-up)."""
-    frames, fps, speed = frame_plan(sol["T_f"], fps, max_frames)
+    frames, delay, speed = frame_plan(sol["T_f"], fps, max_frames)
     n_t, T_f = sol["N_t"], sol["T_f"]
     h = T_f / n_t
     thr = default_contact_threshold(sol)
@@ -58,8 +63,8 @@ def write_gif(sol, out, fps=20, max_frames=160, size=(720, 540)):
     finish_axes(ax, sol)
     ax.set_xlabel("x [m]", fontsize=9)
     ax.set_ylabel("y [m]", fontsize=9)
-    speed_text = "real time" if speed == 1.0 else f"played ×{speed:.2f}"
-    title = ax.set_title(f"{sol['scenario']}: t = {T_f:5.2f} s of {T_f:.2f} s ({speed_text})",
+    playback = speed_text(speed)
+    title = ax.set_title(f"{sol['scenario']}: t = {T_f:5.2f} s of {T_f:.2f} s ({playback})",
                          fontsize=10)
 
     def draw(f):
@@ -73,7 +78,7 @@ def write_gif(sol, out, fps=20, max_frames=160, size=(720, 540)):
             trail.set_data(rob["x"][:upto + 1] + [x], rob["y"][:upto + 1] + [y])
         pts = contacts_at(sol, t, h, thr, poses)
         contacts.set_data([p[0] for p in pts], [p[1] for p in pts])
-        title.set_text(f"{sol['scenario']}: t = {t:5.2f} s of {T_f:.2f} s ({speed_text})")
+        title.set_text(f"{sol['scenario']}: t = {t:5.2f} s of {T_f:.2f} s ({playback})")
 
     moving = trails + disks + heads + [contacts, title]  # in z-order
     try:
@@ -89,8 +94,18 @@ def write_gif(sol, out, fps=20, max_frames=160, size=(720, 540)):
                 ax.draw_artist(a)
             rgb = np.asarray(fig.canvas.buffer_rgba())[..., :3]
             images.append(Image.fromarray(np.ascontiguousarray(rgb)))
-        images[0].save(out, format="GIF", save_all=True, append_images=images[1:],
-                       duration=round(1000.0 / fps), loop=0)
+        # One palette for all frames, no dithering: unchanged pixels keep their index, so each
+        # GIF frame stores only what moved. The palette comes from a sample of the frames
+        # (the last shows every trail) and the contact dots' red.
+        sample = images[::max(1, frames // 6)] + [images[-1]]
+        w, hgt = images[0].size
+        strip = Image.new("RGB", (w, hgt * len(sample) + 8), (255, 0, 0))
+        for k, im in enumerate(sample):
+            strip.paste(im, (0, k * hgt))
+        palette = strip.quantize(colors=128, method=Image.Quantize.MEDIANCUT)
+        frames_p = [im.quantize(palette=palette, dither=Image.Dither.NONE) for im in images]
+        frames_p[0].save(out, format="GIF", save_all=True, append_images=frames_p[1:],
+                         duration=10 * delay, loop=0, optimize=False)
     finally:
         plt.close(fig)
     return frames, speed

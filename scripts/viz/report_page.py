@@ -62,7 +62,7 @@ def fmt(v, spec, none="–"):
 
 
 def anchor(name):
-    return "scene-" + "".join(c if c.isalnum() or c in "-_" else "-" for c in name)
+    return "scene-" + "".join(c if c.isalnum() or c in "-_." else "_" for c in name)
 
 
 def gap_text(best):
@@ -88,6 +88,23 @@ def status_cell(status):
     return f'<span class="{cls}">{esc(status)}</span>'
 
 
+def starts_text(b):
+    """"run / solved", with the planned count when fewer ran, and the scene's time limit."""
+    text = f"{b.get('starts_run', '–')} / {b.get('starts_solved', '–')}"
+    if isinstance(b.get("starts"), int) and b.get("starts_run", 0) < b["starts"]:
+        text += f" (of {b['starts']})"
+    if b.get("time_limit_reached"):
+        text += ", time limit"
+    return text
+
+
+def scene_time(s, key):
+    """A best.json scene time; after --resume the earlier run's clock is not this one's."""
+    if s["info"].get("resumed"):
+        return "– (resumed)"
+    return fmt(s["best"].get(key), ".1f")
+
+
 def summary_table(scenes):
     head = ("<tr><th>scene</th><th class=num>robots / pairs</th><th class=num>N_t</th>"
             "<th class=num>T_f [s]</th><th class=num>lower bound [s]</th><th class=num>gap</th>"
@@ -111,15 +128,19 @@ def summary_table(scenes):
             f"<td class=num><b>{fmt(b.get('T_f'), '.6f')}</b></td>"
             f"<td class=num>{fmt(b.get('lower_bound'), '.6f', 'none')}</td>"
             f"<td class=num>{esc(gap)}</td>"
-            f"<td class=num>{fmt(b.get('time_to_first_feasible_s'), '.1f')}</td>"
-            f"<td class=num>{fmt(b.get('time_to_best_s'), '.1f')}</td>"
-            f"<td class=num>{b.get('starts_run', '–')} / {b.get('starts_solved', '–')}</td>"
+            f"<td class=num>{scene_time(s, 'time_to_first_feasible_s')}</td>"
+            f"<td class=num>{scene_time(s, 'time_to_best_s')}</td>"
+            f"<td class=num>{starts_text(b)}</td>"
             f"<td class=num>{certificate_text(b.get('certificate'))}</td>"
             f"<td>{found}</td></tr>")
     notes = ["Times count from the hand-out of the scene's first start to the moment a rank "
              "found the point (best.json). Certificate: the largest constraint violation and "
              "the largest |min(G, H)| over complementarity pairs, in the model's units; "
              "<i>solved</i> means both are at most 1e-6."]
+    if any(s["info"].get("resumed") for s in scenes):
+        notes.append("“resumed”: the search was resumed (--resume), and times of starts from "
+                     "an earlier run are on that run's clock, so the scene's times are not "
+                     "shown; the T_f-against-time plot shows the last run's starts.")
     if uses_ref:
         notes.append("“vs ref”: no lower bound holds (robots can be pushed); the gap is "
                      "measured against the slowest robot's straight move alone "
@@ -127,6 +148,21 @@ def summary_table(scenes):
     return (f'<div class="scroll"><table>{head}{"".join(rows)}</table></div>'
             + "".join(f'<p class="muted" style="font-size:13px;margin:4px 0">{n}</p>'
                       for n in notes))
+
+
+SCHEDULE_KEYS = (("horizon_factor", "horizon ×{:.2f}"), ("rate", "rate {:.3f}"),
+                 ("grow", "grow {:.2f}"), ("shrink", "shrink {:.2f}"),
+                 ("min_rate", "min rate {:.4f}"), ("zeta", "ζ {:g}"))
+
+
+def schedule_text(r):
+    """A start's schedule from runs.jsonl's `schedule` (what it holds of it), else its
+    description."""
+    sched = r.get("schedule")
+    if isinstance(sched, dict) and sched:
+        return esc(", ".join(f.format(sched[k]) for k, f in SCHEDULE_KEYS
+                             if isinstance(sched.get(k), (int, float))))
+    return esc(r.get("description", ""))
 
 
 def start_table(s):
@@ -145,13 +181,9 @@ def start_table(s):
     for r in ordered:
         solved = r["status"] == "solved" and r.get("T_f") is not None
         best = r["start"] == s["best"].get("start")
-        vs = (f"+{100.0 * (r['T_f'] - best_T) / best_T:.2f} %" if solved and best_T and not best
-              else ("best" if best else "–"))
-        sched = r.get("schedule") or {}
-        sched_text = (f"horizon ×{sched['horizon_factor']:.2f}, rate {sched['rate']:.3f}, "
-                      f"grow {sched['grow']:.2f}, shrink {sched['shrink']:.2f}, "
-                      f"min rate {sched['min_rate']:.4f}, ζ {sched['zeta']:g}"
-                      if sched else esc(r.get("description", "")))
+        vs = ("best" if best else f"{100.0 * (r['T_f'] - best_T) / best_T:+.2f} %"
+              if solved and best_T else "–")
+        sched_text = schedule_text(r)
         detail = f"<br><span class=muted>{esc(r['detail'])}</span>" if r.get("detail") else ""
         guess_text = r.get("description", "").split(": ", 1)[-1].split(", horizon")[0]
         rows.append(
@@ -188,7 +220,10 @@ def scene_section(s):
     if info.get("best_description"):
         facts.append(("found by", esc(info["best_description"])
                       + (f", {b['time_to_best_s']:.1f} s into the scene"
-                         if b.get("time_to_best_s") is not None else "")))
+                         if b.get("time_to_best_s") is not None and not info.get("resumed")
+                         else "")))
+    if info.get("solve_timing"):
+        facts.append(("solve", esc(info["solve_timing"])))
     if info.get("model"):
         m = info["model"]
         facts.append(("model", f"{m.get('variables')} variables, {m.get('constraints')} "
@@ -232,9 +267,16 @@ def page(report):
             "<h2 id=summary>Summary</h2>", summary_table(report["scenes"]),
             f'<nav class="toc">Scenes: {toc}</nav>',
             f'<p class="muted" style="font-size:14px">Raw data: {data}</p>']
-    body += [scene_section(s) for s in report["scenes"]]
-    body.append("<footer>Made by disco's scripts/report from the search's best.json, "
-                "runs.jsonl and best/*.json (copied to data/). Model: Peng, Anitescu &amp; "
+    for s in report["scenes"]:
+        try:
+            body.append(scene_section(s))
+        except Exception as e:  # one scene's odd data must not cost the page
+            body.append(f'<h2 id="{anchor(s["name"])}">{esc(s["name"])}</h2>'
+                        f'<div class="problem">this section could not be written: '
+                        f"{esc(type(e).__name__)}: {esc(e)}</div>")
+            report["problems"].append(f"{s['name']}: section: {type(e).__name__}: {e}")
+    body.append("<footer>Made by disco's scripts/report from the raw data linked above "
+                "(copied to data/). Model: Peng, Anitescu &amp; "
                 "Akella, <i>Optimal Control of Multiple Robot Systems with Friction using "
                 "MPCC</i>, Appendix A.</footer>")
     return ("<!DOCTYPE html>\n<html lang=en>\n<head>\n<meta charset=utf-8>\n"

@@ -6,7 +6,8 @@ its best.json entry:
   ([seconds within the start, T_f]). The black stairs are the scene's best so far over all
   starts. Times count from the scene's first hand-out (best.json `started_s`), as best.json's
   time_to_first_feasible_s and time_to_best_s do. A start without a solution is a grey cross
-  at its end, on the bottom edge.
+  at its end, on the bottom edge. Starts of an earlier run of a resumed search (another clock)
+  and lines without times are left out, and the title says how many.
 - spread: the final T_f of every solved start, one column per initial-guess kind, with the
   count solved / run under each column.
 
@@ -60,7 +61,9 @@ def plot_progress(runs, scene, out):
     kinds = guess_kinds(runs)
     colors = guess_colors(kinds)
     events, failed = [], []
-    for r in sorted(runs, key=lambda r: r["start"]):
+    timed = [r for r in runs if isinstance(r.get("finished_s"), (int, float))
+             and isinstance(r.get("seconds"), (int, float)) and not r.get("_resumed")]
+    for r in sorted(timed, key=lambda r: r["start"]):
         if r["status"] != "solved" or r.get("T_f") is None:
             failed.append(r["finished_s"] - scene_start)
             continue
@@ -84,7 +87,7 @@ def plot_progress(runs, scene, out):
                 low = tf
                 xs.append(t)
                 ys.append(tf)
-        end = max(r["finished_s"] - scene_start for r in runs)
+        end = max(r["finished_s"] - scene_start for r in timed)
         ax.step(xs + [end], ys + [ys[-1]], where="post", color="black", lw=1.6, ls="-",
                 alpha=0.55, zorder=4)
     if failed:
@@ -105,7 +108,10 @@ def plot_progress(runs, scene, out):
               frameon=False, borderaxespad=0.0)
     ax.set_xlabel("search time since the scene's first hand-out [s]")
     ax.set_ylabel("T_f [s]")
-    ax.set_title(f"{scene['name']}: T_f of every start against time", fontsize=11)
+    left_out = len(runs) - len(timed)
+    ax.set_title(f"{scene['name']}: T_f of every start against time"
+                 + (f" ({left_out} start(s) of an earlier run or without times left out)"
+                    if left_out else ""), fontsize=11 if not left_out else 9)
     ax.set_xlim(left=0.0)
     ax.grid(True, lw=0.4, color="0.88")
     ax.tick_params(labelsize=8)

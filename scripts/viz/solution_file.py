@@ -56,7 +56,7 @@ def load(path, full=False):
     a trajectory), N_t, lower_bound, robots (name, radius, F_max, start [x, y, phi], target
     [[x, y] lower, [x, y] upper] with None for free, x, y, phi) and pairs (i, j,
     normal_force). full=True adds g, certificate, model, timing, status_detail, each robot's
-    mass, mu, vx, vy, omega and per-step forces, and each pair's mode, safe_distance, mu,
+    mass, mu, force_bound [bx, by] (|F_x| <= bx, |F_y| <= by), vx, vy, omega and per-step forces, and each pair's mode, safe_distance, mu,
     distance and tangential_force."""
     try:
         with open(path) as f:
@@ -114,6 +114,17 @@ def load(path, full=False):
                     need(r, key, w)
             for key in ROBOT_NUMBERS:
                 rob[key] = number(need(r, key, w), f"{w}.{key}")
+            # The box of F: +-F_max per component; along the axis for force_dims 1.
+            dims = need(r, "force_dims", w)
+            if dims not in (1, 2) or isinstance(dims, bool):
+                raise BadInput(f"'{w}.force_dims' is {json.dumps(dims)}, expected 1 or 2")
+            axis = [1.0, 1.0]
+            if dims == 1:
+                a = need(r, "force_axis", w)
+                if not isinstance(a, list) or len(a) != 2:
+                    raise BadInput(f"'{w}.force_axis' is not a list [ax, ay]")
+                axis = [abs(number(v, f"{w}.force_axis[{k}]")) for k, v in enumerate(a)]
+            rob["force_bound"] = [rob["F_max"] * axis[0], rob["F_max"] * axis[1]]
         sol["robots"].append(rob)
 
     pairs = need(doc, "pairs", "")

@@ -74,15 +74,15 @@ def _legend(ax, ncol=1):
 
 
 def plot_controls(sol, out, times):
-    """F_x, F_y [N] per robot; dashed: the box bound +-F_max of each (Appendix A bounds each
-    component; a D_ef = 1 robot pushes along its axis)."""
+    """F_x, F_y [N] per robot; dashed: each component's bound (Appendix A bounds each by F_max;
+    a D_ef = 1 robot pushes f along its unit axis a with |f| <= F_max: |F_x| <= |a_x| F_max)."""
     t = _grid(sol)
-    fig, axes = _figure(2, f"{sol['scenario']}: controls (dashed: ±F_max)")
+    fig, axes = _figure(2, f"{sol['scenario']}: controls (dashed: the bounds)")
     for rob, c in _robots(sol):
         axes[0].stairs(rob["Fx"], t, color=c, lw=1.3, label=rob["name"], baseline=None)
         axes[1].stairs(rob["Fy"], t, color=c, lw=1.3, baseline=None)
-        for ax in axes:
-            for v in (-rob["F_max"], rob["F_max"]):
+        for ax, bound in zip(axes, rob["force_bound"]):
+            for v in (-bound, bound):
                 ax.axhline(v, color=c, lw=0.8, ls="--", alpha=0.7)
     axes[0].set_ylabel("F_x [N]")
     axes[1].set_ylabel("F_y [N]")
@@ -122,8 +122,9 @@ def _pair_label(sol, p):
 
 
 def _pair_colors(n):
-    cmap = plt.get_cmap("Dark2")
-    return [cmap(k % 8) for k in range(n)]
+    """n distinct colours: Dark2 for up to 8 pairs, else tab20 (MAX_PAIR_LINES <= 20)."""
+    cmap = plt.get_cmap("Dark2" if n <= 8 else "tab20")
+    return [cmap(k % cmap.N) for k in range(n)]
 
 
 def contact_pairs(sol, thr):
