@@ -20,6 +20,10 @@ MODE:
               `disco solve` output gives a one-scene report without a search section; lines of
               another seed are left out, older lines (no history, schedule or times) are
               drawn, and a resumed search's scene times are marked.
+  plots       on the search of `build`: every plot's drawn data read back from the figure
+              and compared with the solution file and runs.jsonl (controls, speeds, floor
+              friction, contact forces, distances; each start's new bests against time, the
+              spread of final T_f).
   screenshot  scripts/screenshot_report on the page built by `build`: a PNG of the window
               size, not blank, in which the plots' colours appear (the images loaded offline).
 """
@@ -339,8 +343,111 @@ def screenshot():
     check(r.returncode == 2 and "no such file" in r.stderr, "a missing page: exit 2")
 
 
+def plots():
+    """What the plots draw is the data: read back from the figures (the viz functions return
+    them open when given no file) and compared with the solution file and runs.jsonl."""
+    import math
+    import numpy as np
+    from matplotlib.patches import StepPatch
+    sys.path.insert(0, SCRIPTS)
+    from viz import search_plots, time_series
+    from viz.solution_file import load
+
+    with open(os.path.join(SEARCH, "best.json")) as f:
+        best = json.load(f)
+    with open(os.path.join(SEARCH, "runs.jsonl")) as f:
+        runs = [json.loads(line) for line in f if line.strip()]
+    name = "forced_contact"  # 2 robots, a contact pair, a collision
+    entry = best["scenes"][name]
+    path = os.path.join(SEARCH, entry["solution"])
+    with open(path) as f:
+        raw = json.load(f)
+    sol = load(path, full=True)
+    n, T = raw["N_t"], raw["T_f"]
+    grid = [k * T / n for k in range(n + 1)]
+
+    def stairs(ax):
+        return [p.get_data() for p in ax.patches if isinstance(p, StepPatch)]
+
+    def hlines(ax):
+        return sorted({round(l.get_ydata()[0], 12) for l in ax.lines
+                       if l.get_linestyle() == "--" and len(set(l.get_ydata())) == 1})
+
+    def same(a, b):
+        return len(a) == len(b) and np.allclose(a, b, rtol=0, atol=1e-12)
+
+    fig = time_series.plot_controls(sol, None, [])
+    ax_x, ax_y = fig.axes[:2]
+    for ax, key in ((ax_x, "Fx"), (ax_y, "Fy")):
+        got = stairs(ax)
+        check(len(got) == len(raw["robots"]) and
+              all(same(g.values, r[key]) and same(g.edges, grid) for g, r in zip(got, raw["robots"])),
+              f"controls: {key} of every robot over the step grid")
+    # The bounds: ±F_max per component; ±|a| F_max along a robot's force axis a (D_ef 1; in
+    # forced_contact a = (1, 0), so F_y's bound is 0).
+    for ax, k in ((ax_x, 0), (ax_y, 1)):
+        want = sorted({round(sg * r["F_max"] * (abs(r["force_axis"][k]) if r["force_dims"] == 1
+                                                 else 1.0), 12)
+                       for r in raw["robots"] for sg in (-1, 1)})
+        check(hlines(ax) == want, f"controls: component {k} dashed at its bounds {want}")
+
+    fig = time_series.plot_speeds(sol, None, [])
+    lines = [l for l in fig.axes[0].lines if len(l.get_xdata()) == n + 1]
+    check(len(lines) == len(raw["robots"]) and all(
+        same(l.get_ydata(), [math.hypot(a, b) for a, b in zip(r["vx"], r["vy"])])
+        for l, r in zip(lines, raw["robots"])), "speeds: |v| of every robot at the states")
+
+    fig = time_series.plot_floor_friction(sol, None, [])
+    got = stairs(fig.axes[0])
+    check(all(same(g.values, [math.hypot(a, b) for a, b in zip(r["friction_x"], r["friction_y"])])
+              for g, r in zip(got, raw["robots"])) and len(got) == len(raw["robots"]),
+          "floor friction: |friction| of every robot per step")
+    mug = sorted(round(r["mu"] * r["mass"] * raw["g"], 12) for r in raw["robots"])
+    check(hlines(fig.axes[0]) == sorted(set(mug)), f"floor friction: dashed at mu M g {mug}")
+
+    fig = time_series.plot_contact_forces(sol, None, [], 1e-3)
+    pushing = [p for p in raw["pairs"] if max(p["normal_force"]) > 1e-3]
+    n_got, t_got = stairs(fig.axes[0]), stairs(fig.axes[1])
+    check(pushing and len(n_got) == len(pushing) and
+          all(same(g.values, p["normal_force"]) for g, p in zip(n_got, pushing)) and
+          all(same(g.values, p["tangential_force"]) for g, p in zip(t_got, pushing)),
+          f"contact forces: normal and tangential of the {len(pushing)} pushing pair(s)")
+
+    fig = time_series.plot_distances(sol, None, [])
+    lines = [l for l in fig.axes[0].lines if len(l.get_xdata()) == n + 1]
+    check(len(lines) == len(raw["pairs"]) and all(
+        same(l.get_ydata(), p["distance"]) for l, p in zip(lines, raw["pairs"])),
+        "distances: rho of the pair at the states")
+
+    # The search plots, for the swap (several starts, several new bests).
+    name = "two_robots_swap_avoid"
+    scene = dict(best["scenes"][name], name=name)
+    mine = [r for r in runs if r["scene"] == name]
+    fig = search_plots.plot_progress(mine, scene, None)
+    ax = fig.axes[0]
+    steps = [l for l in ax.lines if l.get_drawstyle() == "steps-post"]
+    for r in sorted(mine, key=lambda r: r["start"]):
+        handed = r["finished_s"] - r["seconds"] - scene["started_s"]
+        xs = [handed + t for t, _ in r["history"]] + [handed + r["seconds"]]
+        ys = [tf for _, tf in r["history"]] + [r["history"][-1][1]]
+        check(any(same(l.get_xdata(), xs) and same(l.get_ydata(), ys) for l in steps),
+              f"progress: start {r['start']}'s new bests at search time since the hand-out")
+    env = [l for l in steps if l.get_color() == "black"]
+    check(len(env) == 1 and np.isclose(min(env[0].get_ydata()), scene["T_f"], rtol=0, atol=1e-12),
+          "progress: the best-so-far line ends at the scene's best T_f")
+    fig = search_plots.plot_spread(mine, scene, None)
+    pts = sorted(float(l.get_ydata()[0]) for l in fig.axes[0].lines
+                 if len(l.get_ydata()) == 1 and l.get_linestyle() == "None")
+    check(same(pts, sorted(r["T_f"] for r in mine if r["status"] == "solved")),
+          "spread: one point per solved start at its final T_f")
+    stars = [l for l in fig.axes[0].lines if l.get_marker() == "*"]
+    check(len(stars) == 1 and stars[0].get_ydata()[0] == scene["T_f"], "spread: the best is the star")
+
+
 if MODE == "build":
     build()
+elif MODE == "plots":
+    plots()
 elif MODE == "screenshot":
     screenshot()
 else:

@@ -20,7 +20,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.transforms import blended_transform_factory  # noqa: E402
 
-from viz.snapshots import DPI  # noqa: E402
+from viz.snapshots import DPI, save_figure  # noqa: E402
 
 GUESS_ORDER = ["straight", "perturbed", "detour", "yield", "perturbed feasible"]
 SIZE = (900, 430)
@@ -115,10 +115,7 @@ def plot_progress(runs, scene, out):
     ax.set_xlim(left=0.0)
     ax.grid(True, lw=0.4, color="0.88")
     ax.tick_params(labelsize=8)
-    try:
-        fig.savefig(out, dpi=DPI)
-    finally:
-        plt.close(fig)
+    return save_figure(fig, out)
 
 
 def plot_spread(runs, scene, out):
@@ -154,7 +151,4 @@ def plot_spread(runs, scene, out):
                   borderaxespad=0.0)
     ax.grid(True, axis="y", lw=0.4, color="0.88")
     ax.tick_params(labelsize=8)
-    try:
-        fig.savefig(out, dpi=DPI)
-    finally:
-        plt.close(fig)
+    return save_figure(fig, out)

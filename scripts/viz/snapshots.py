@@ -16,6 +16,18 @@ from viz.solution_file import (all_contacts, bounds, contacts_at,  # noqa: E402
 
 DPI = 100
 
+
+def save_figure(fig, out):
+    """Writes `fig` to the file `out` and closes it; with out None, returns the figure open
+    (for tests that read what was drawn)."""
+    if out is None:
+        return fig
+    try:
+        fig.savefig(out, dpi=DPI)
+    finally:
+        plt.close(fig)
+    return None
+
 # --- drawing ----------------------------------------------------------------------------------
 
 def blend(c, other, w):
@@ -222,8 +234,5 @@ def draw_snapshots(sol, out, times, use_panels=None, size=None, thr=None):
     else:
         size = size or (1200, 900)
         fig = overlay(sol, times, thr, size, extra)
-    try:
-        fig.savefig(out, dpi=DPI)
-    finally:
-        plt.close(fig)
+    save_figure(fig, out)
     return size, use_panels

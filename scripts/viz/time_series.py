@@ -14,7 +14,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from viz.snapshots import DPI, robot_colors  # noqa: E402
+from viz.snapshots import DPI, robot_colors, save_figure  # noqa: E402
 
 WIDTH = 900           # pixels
 ROW_HEIGHT = 230      # pixels per subplot row
@@ -46,7 +46,8 @@ def _figure(rows, title):
 
 
 def _finish(fig, axes, sol, times, out):
-    """Grid, snapshot-time lines, the legend of the first axes; saves and closes."""
+    """Grid, snapshot-time lines, the legend of the first axes; saves to `out` and closes
+    (out None: returns the figure)."""
     _legend(axes[0])
     for ax in axes:
         ax.grid(True, lw=0.4, color="0.88")
@@ -61,10 +62,7 @@ def _finish(fig, axes, sol, times, out):
                      xytext=(0, 2), textcoords="offset points", ha="center", va="bottom",
                      fontsize=7, color="0.4")
     axes[-1].set_xlabel("t [s]")
-    try:
-        fig.savefig(out, dpi=DPI)
-    finally:
-        plt.close(fig)
+    return save_figure(fig, out)
 
 
 def _legend(ax, ncol=1):
@@ -86,7 +84,7 @@ def plot_controls(sol, out, times):
                 ax.axhline(v, color=c, lw=0.8, ls="--", alpha=0.7)
     axes[0].set_ylabel("F_x [N]")
     axes[1].set_ylabel("F_y [N]")
-    _finish(fig, axes, sol, times, out)
+    return _finish(fig, axes, sol, times, out)
 
 
 def plot_speeds(sol, out, times):
@@ -102,7 +100,7 @@ def plot_speeds(sol, out, times):
     if max(abs(w) for rob in sol["robots"] for w in rob["omega"]) < 1e-9:
         axes[1].set_ylim(-1.0, 1.0)  # roundoff only: do not blow it up to full height
         _note(axes[1], "no robot turns (|ω| < 1e-9 rad/s)")
-    _finish(fig, axes, sol, times, out)
+    return _finish(fig, axes, sol, times, out)
 
 
 def plot_floor_friction(sol, out, times):
@@ -114,7 +112,7 @@ def plot_floor_friction(sol, out, times):
         axes[0].stairs(mag, t, color=c, lw=1.3, label=rob["name"], baseline=None)
         axes[0].axhline(rob["mu"] * rob["mass"] * sol["g"], color=c, lw=0.9, ls="--")
     axes[0].set_ylabel("|friction| [N]")
-    _finish(fig, axes, sol, times, out)
+    return _finish(fig, axes, sol, times, out)
 
 
 def _pair_label(sol, p):
@@ -146,7 +144,7 @@ def plot_contact_forces(sol, out, times, thr):
         _note(axes[0], "no contact force in this solution")
     axes[0].set_ylabel("normal [N]")
     axes[1].set_ylabel("tangential [N]")
-    _finish(fig, axes, sol, times, out)
+    return _finish(fig, axes, sol, times, out)
 
 
 def plot_distances(sol, out, times):
@@ -172,4 +170,4 @@ def plot_distances(sol, out, times):
     else:
         _note(ax, "no pair comes within two diameters")
     ax.set_ylabel("ρ [m]")
-    _finish(fig, axes, sol, times, out)
+    return _finish(fig, axes, sol, times, out)
