@@ -165,6 +165,12 @@ def schedule_text(r):
     return esc(r.get("description", ""))
 
 
+def guess_of(description):
+    """The guess part of a start's description ("start 3: detour left, horizon x1.75, ..."
+    -> "detour left"; StartSpec::describe in search/start.cpp)."""
+    return description.split(": ", 1)[-1].split(", horizon")[0]
+
+
 def start_table(s):
     runs = s["runs"]
     if not runs:
@@ -185,7 +191,7 @@ def start_table(s):
               if solved and best_T else "–")
         sched_text = schedule_text(r)
         detail = f"<br><span class=muted>{esc(r['detail'])}</span>" if r.get("detail") else ""
-        guess_text = r.get("description", "").split(": ", 1)[-1].split(", horizon")[0]
+        guess_text = guess_of(r.get("description", ""))
         rows.append(
             f'<tr{" class=best" if best else ""}><td class=num>{r["start"]}</td>'
             f"<td>{esc(guess_text or r.get('guess', ''))}</td><td>{sched_text}</td>"
