@@ -6,6 +6,7 @@
 
 #include <spdlog/fmt/fmt.h>
 
+#include "core/config/solver_settings.h"
 #include "core/util/check.h"
 #include "core/util/errors.h"
 #include "core/util/numbers.h"
@@ -14,6 +15,83 @@ namespace disco {
 namespace {
 // A minimising step's T_f this far (relative) below its bound left the bound inactive.
 constexpr double kInsideBound = 1e-6;
+// A new best must be this much (relative) below the old one.
+constexpr double kBetter = 1e-7;
+
+// Step 2 of the kBranch strategy (see objective_reduction.h). `solve`, `budget`, `record`,
+// `take_best` and `out_of_time` are reduce_objective's: one elastic solve under the time
+// limit, the wall limit for the next solve, the solve log, "this certified result is the new
+// best", and whether the time limit has passed.
+template <class Solve, class Budget, class Record, class TakeBest, class OutOfTime>
+void branch_descent(RobotProblem& problem, ElasticSolver& solver, const ReductionSettings& cfg,
+                    ReductionResult& out, Solve&& solve, Budget&& budget, Record&& record,
+                    TakeBest&& take_best, OutOfTime&& out_of_time) {
+  // A branch descent from `from` (certified or not) under T_f <= T_best; true if it improved.
+  auto branch = [&](const MpccResult& from) {
+    problem.limit_horizon(out.T_best);
+    budget();
+    MpccResult r = solver.solve_branch(problem.program(), from, cfg.flip_rounds);
+    const double T_f = problem.horizon(r.z);
+    const bool improved = r.solved() && T_f < out.T_best * (1.0 - kBetter);
+    record("branch", out.T_best, r, improved);
+    if (improved) take_best(std::move(r));
+    return improved;
+  };
+  // 2a. One segment of the elastic minimisation (step_iterations Ipopt iterations) from the
+  // feasible point. Converged, it is a local optimum (one-robot scenes end here); else a
+  // branch descent from its point. (A branch descent straight from the feasible point commits
+  // to the branch of a slow motion: on paper A1 the elastic minimisation from there ended 2 %
+  // above the optimum it reaches from the feasible point.)
+  solver.set_iteration_limit(cfg.step_iterations);
+  problem.limit_horizon(out.T_best);
+  {
+    MpccResult r = solve(out.best);
+    const bool improved = r.solved() && problem.horizon(r.z) < out.T_best * (1.0 - kBetter);
+    record("minimize", out.T_best, r, improved);
+    if (improved) take_best(MpccResult(r));
+    if (!out_of_time()) {
+      solver.set_iteration_limit(0);
+      branch(r);
+      solver.set_iteration_limit(cfg.step_iterations);
+    }
+    if (r.solved()) {
+      solver.set_iteration_limit(0);
+      return;
+    }
+  }
+  // 2b. More segments, the first from the best branch point, each continuing the last (its
+  // primal-dual point and barrier parameter) and bounded by the T_f it starts from (the bound
+  // never forces it); after each one that ends below the best, a branch descent from its point
+  // (the smaller side of every pair fixed: even at complementarity 3e-2 that was the branch of
+  // a new best, on three_robots_contact).
+  MpccResult segment = out.best;
+  double T_segment = out.T_best;
+  int idle = 0;  // segments in a row that gave no new best
+  solver.set_resume_barrier(true);
+  for (int k = 0; k < cfg.max_solves && !out_of_time(); ++k) {
+    problem.limit_horizon(T_segment);
+    MpccResult r = solve(segment);
+    T_segment = problem.horizon(r.z);
+    const bool improved = r.solved() && T_segment < out.T_best * (1.0 - kBetter);
+    record("minimize", T_segment, r, improved);
+    if (improved) take_best(MpccResult(r));
+    bool better = improved;
+    if (!out_of_time() && T_segment < out.T_best) {
+      solver.set_iteration_limit(0);
+      better = branch(r) || better;
+      solver.set_iteration_limit(cfg.step_iterations);
+    }
+    // A segment that converged (certified) is a local optimum of the elastic program.
+    if (r.solved() || r.status == MpccStatus::kInfeasible) break;
+    // Not tight: raising zeta no longer moves it, and the next segment starts where it ended.
+    if (r.status == MpccStatus::kElasticNotTight && !better) break;
+    idle = better ? 0 : idle + 1;
+    if (idle >= 2) break;
+    segment = std::move(r);
+  }
+  solver.set_iteration_limit(0);
+  solver.set_resume_barrier(false);
+}
 }  // namespace
 
 ReductionSettings reduction_settings(const Settings& s) {
@@ -43,6 +121,12 @@ ReductionSettings reduction_settings(const Settings& s) {
   if (r.minimize_iterations < 0)
     throw InputError(s.where("reduction.minimize_iterations") +
                      ": key 'reduction.minimize_iterations': must be >= 0");
+  r.strategy = choice<ReductionStrategy>(s, "reduction.strategy",
+                                         {{"branch", ReductionStrategy::kBranch},
+                                          {"homotopy", ReductionStrategy::kHomotopy}});
+  r.flip_rounds = s.integer("reduction.flip_rounds");
+  if (r.flip_rounds < 0)
+    throw InputError(s.where("reduction.flip_rounds") + ": key 'reduction.flip_rounds': must be >= 0");
   r.time_limit = s.number("reduction.time_limit");
   if (r.time_limit < 0)
     throw InputError(s.where("reduction.time_limit") + ": key 'reduction.time_limit': must be >= 0");
@@ -79,11 +163,14 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
   ReductionResult out;
   // Every elastic solve gets at most the time left (and its own limit, if smaller).
   const double own_wall_limit = solver.settings().wall_limit_s;
-  auto solve = [&](const auto& start) {
+  auto budget = [&] {  // the next solve's wall limit
     if (cfg.time_limit > 0) {
       const double left = std::max(cfg.time_limit - elapsed(), 1e-3);
       solver.set_wall_limit(own_wall_limit > 0 ? std::min(own_wall_limit, left) : left);
     }
+  };
+  auto solve = [&](const auto& start) {
+    budget();
     return solver.solve(problem.program(), start);
   };
   auto record = [&](const std::string& phase, double bound, const MpccResult& r, bool improved) {
@@ -159,6 +246,15 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
     }
     return r.solved();
   };
+  if (cfg.strategy == ReductionStrategy::kBranch) {
+    branch_descent(problem, solver, cfg, out, solve, budget, record, take_best,
+                   [&] { return cfg.time_limit > 0 && elapsed() > cfg.time_limit; });
+    solver.set_wall_limit(own_wall_limit);
+    problem.limit_horizon(kInf);
+    out.status = MpccStatus::kSolved;
+    out.seconds = elapsed();
+    return out;
+  }
   double rate = cfg.rate;
   bool fixed_steps = false;
   bool at_local_optimum = false;  // the best point is a converged minimisation's

@@ -15,7 +15,22 @@
 //      certified, its point becomes the best and the reduction continues from
 //      it; otherwise the reduction continues from the feasible point of step 1
 //      exactly as without a perturbation. Skipped past the time limit.
-//   2. Reduction: with r = rate, require T_f <= (1 - r) T_best, warm-started
+//   2. From the feasible point to a local optimum, by one of two strategies
+//      (reduction.strategy; configs/disco.yaml says which is the default and why):
+//   2 (kBranch). a) One segment of the elastic minimisation (T_f <= T_best, at most
+//      step_iterations Ipopt iterations) from the feasible point; if it converges it is a
+//      local optimum (one-robot scenes end here). b) A branch descent from its point
+//      (ElasticSolver::solve_branch: the smooth program with the smaller side of every pair
+//      fixed at 0, minimised under T_f <= T_best, and biactive pairs whose fixed side has a
+//      negative multiplier flipped, at most flip_rounds times: a B-stationary point when no
+//      flip is left). Such a program converges in 3-30 iterations without the inertia
+//      corrections of the elastic one. c) Further segments, the first from the best branch
+//      point, each continuing the last (primal-dual point and Ipopt's barrier parameter),
+//      each followed by a branch descent from its point when its T_f is below the best. Stop
+//      when a segment converges or is infeasible, when one ends elastic_not_tight without a
+//      new best, after two segments in a row without a new best, after max_solves segments
+//      or at the time limit. Only certified points become the best.
+//   2 (kHomotopy). Reduction: with r = rate, require T_f <= (1 - r) T_best, warm-started
 //      from the best point. A certified solution with a smaller T_f becomes
 //      the best and r *= grow (at most 0.5); anything else r *= shrink. A step
 //      whose bound lies below a valid lower bound (RobotProblem::lower_bound)
@@ -63,13 +78,23 @@
 
 namespace disco {
 
+enum class ReductionStrategy {
+  kBranch,    // step 2 by branch descents and elastic segments (below)
+  kHomotopy,  // step 2 by the paper's reduction: minimising and fixed steps (below)
+};
+
+// The schedule; its values come from configs/disco.yaml (reduction_settings), so no
+// defaults are kept here.
 struct ReductionSettings {
-  double horizon_factor = 2.0;
-  double horizon_min = 1.0;  // s
-  double rate = 0.05, grow = 1.5, shrink = 0.5, min_rate = 1e-3;
-  int max_solves = 40;
-  int step_iterations = 300;  // cap on a minimising step before switching to fixed steps
-  int minimize_iterations = 0;  // cap on the early minimisation (step 3); 0 = none
+  ReductionStrategy strategy = ReductionStrategy::kHomotopy;
+  double horizon_factor = 0.0;
+  double horizon_min = 0.0;  // s
+  double rate = 0.0, grow = 0.0, shrink = 0.0, min_rate = 0.0;
+  int max_solves = 0;
+  int step_iterations = 0;  // kHomotopy: cap on a minimising step before switching to fixed
+                            // steps; kBranch: Ipopt iterations per elastic segment
+  int minimize_iterations = 0;  // kHomotopy: cap on the early minimisation (step 3); 0 = none
+  int flip_rounds = 0;      // kBranch: at most this many rounds of flips per branch descent
   double time_limit = 0.0;  // s; 0 = none
 };
 ReductionSettings reduction_settings(const Settings& settings);  // `feasibility:` + `reduction:`

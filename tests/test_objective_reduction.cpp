@@ -15,6 +15,7 @@
 
 #include "core/config/settings.h"
 #include "core/config/solver_settings.h"
+#include "core/util/errors.h"
 #include "core/model/robot_problem.h"
 #include "core/model/scene_yaml.h"
 #include "search/objective_reduction.h"
@@ -286,6 +287,55 @@ TEST(ObjectiveReduction, ACappedEarlyMinimisationHandsBackToTheFixedSteps) {
   EXPECT_EQ(last.status, MpccStatus::kSolved);
   EXPECT_GT(last.iterations, 3);
   EXPECT_EQ(minimizations[1] + 1, result.solves.size());
+}
+
+}  // namespace
+}  // namespace disco
+
+namespace disco {
+namespace {
+
+// reduction.strategy=branch (search/objective_reduction.h, step 2): on one robot the first
+// elastic segment from the feasible point converges and a branch descent follows; the answer
+// is certified and at the closed-form optimum (the scene's lower bound) within the
+// discretisation error of N_t = 20 (1e-3).
+TEST(ObjectiveReduction, TheBranchStrategyReachesTheOneRobotOptimum) {
+  const Scene scene = scenario("one_robot_axis", {"steps=20"});
+  Settings settings = Settings::load(default_settings_path());
+  settings.apply_override("reduction.strategy=branch");
+  const ReductionSettings schedule = reduction_settings(settings);
+  ASSERT_EQ(schedule.strategy, ReductionStrategy::kBranch);
+  RobotProblem problem(scene);
+  IpoptSolver ipopt(ipopt_options(settings));
+  ElasticSolver solver(ipopt, elastic_settings(settings));
+  const ReductionResult result = reduce_objective(problem, solver, schedule);
+  print(result);
+  ASSERT_TRUE(result.found);
+  EXPECT_TRUE(result.best.solved());
+  EXPECT_LE(result.best.certificate.max_complementarity, 1e-6);
+  const double lb = problem.lower_bound().value();
+  EXPECT_GE(result.T_best, lb * (1 - 1e-9));
+  EXPECT_LE(result.T_best, lb * (1 + 1e-3));
+  ASSERT_GE(result.solves.size(), 3u);
+  EXPECT_EQ(result.solves[0].phase, "feasibility");
+  EXPECT_EQ(result.solves[1].phase, "minimize");
+  EXPECT_EQ(result.solves[2].phase, "branch");
+  // No fixed steps or reduction steps: those are the homotopy's.
+  for (const SolveRecord& r : result.solves)
+    EXPECT_TRUE(r.phase == "feasibility" || r.phase == "minimize" || r.phase == "branch") << r.phase;
+}
+
+TEST(ObjectiveReduction, AnUnknownStrategyIsAnErrorNamingTheKey) {
+  Settings settings = Settings::load(default_settings_path());
+  settings.apply_override("reduction.strategy=fast");
+  try {
+    reduction_settings(settings);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("reduction.strategy"), std::string::npos) << what;
+    EXPECT_NE(what.find("'branch' or 'homotopy', got 'fast'"), std::string::npos) << what;
+  }
 }
 
 }  // namespace

@@ -30,15 +30,9 @@ ModelOptions model_options(const Settings& s) {
 
 ElasticSettings elastic_settings(const Settings& s) {
   ElasticSettings e;
-  const std::string f = s.text("elastic.formulation");
-  if (f == "lumped") {
-    e.formulation = ElasticFormulation::kLumped;
-  } else if (f == "per_pair") {
-    e.formulation = ElasticFormulation::kPerPair;
-  } else {
-    throw InputError(s.where("elastic.formulation") +
-                     ": key 'elastic.formulation': must be 'lumped' or 'per_pair', got '" + f + "'");
-  }
+  e.formulation = choice<ElasticFormulation>(s, "elastic.formulation",
+                                              {{"lumped", ElasticFormulation::kLumped},
+                                               {"per_pair", ElasticFormulation::kPerPair}});
   e.zeta = positive(s, "elastic.zeta");
   e.zeta_factor = positive(s, "elastic.zeta_factor");
   if (e.zeta_factor <= 1)

@@ -3,12 +3,16 @@
 // mode's parameters. Values out of range are InputErrors naming the key.
 #pragma once
 
+#include <initializer_list>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "core/config/settings.h"
 #include "core/elastic/elastic_solver.h"
 #include "core/ipopt/ipopt_solver.h"
 #include "core/model/adaptive.h"
+#include "core/util/errors.h"
 
 namespace disco {
 
@@ -18,5 +22,22 @@ ModelOptions model_options(const Settings& settings);              // the `model
 
 // Path of the default settings file shipped with disco (configs/disco.yaml).
 std::string default_settings_path();
+
+// The value of the text key `key` among `choices` (name, value); any other text is an
+// InputError naming the key and listing the names.
+template <class E>
+E choice(const Settings& s, const std::string& key,
+         std::initializer_list<std::pair<const char*, E>> choices) {
+  const std::string text = s.text(key);
+  std::string names;
+  size_t k = 0;
+  for (const auto& [name, value] : choices) {
+    if (text == name) return value;
+    if (k > 0) names.append(k + 1 == choices.size() ? " or " : ", ");
+    names.append("'").append(name).append("'");
+    ++k;
+  }
+  throw InputError(s.where(key) + ": key '" + key + "': must be " + names + ", got '" + text + "'");
+}
 
 }  // namespace disco

@@ -54,6 +54,98 @@ MpccResult ElasticSolver::solve(const Mpcc& mpcc, const MpccResult& warm) {
   return run(mpcc, warm.elastic_point, warm.zeta > 0 ? warm.zeta : settings_.zeta);
 }
 
+MpccResult ElasticSolver::solve_branch(const Mpcc& mpcc, const MpccResult& from,
+                                       int max_flip_rounds) {
+  using Clock = std::chrono::steady_clock;
+  const auto t0 = Clock::now();
+  const int n = mpcc.num_variables();
+  const int pairs = mpcc.num_complementarity_pairs();
+  ElasticNlp nlp(mpcc, settings_.formulation, settings_.zeta);
+  const Vector lo0 = nlp.variable_lower(), hi0 = nlp.variable_upper();
+  // The branch: fixed[i] is the elastic index of pair i's side held at 0.
+  NlpPoint point = from.elastic_point;
+  point.z.head(n) = from.z;  // the certified point (polished), with the elastic duals
+  {
+    const Vector lifted = nlp.lift(from.z);
+    point.z.tail(point.z.size() - n) = lifted.tail(lifted.size() - n);
+  }
+  std::vector<int> fixed(pairs);
+  for (int i = 0; i < pairs; ++i)
+    fixed[i] = point.z[nlp.u(i)] <= point.z[nlp.w(i)] ? nlp.u(i) : nlp.w(i);
+
+  MpccResult out = from;
+  out.nlp_solves = out.iterations = 0;
+  out.branch_solves = out.flips = 0;
+  out.b_stationary = false;
+  const double tol = settings_.complementarity_tol;
+  Vector grad(nlp.num_variables()), jac(nlp.jacobian_pattern().size()), nu(nlp.num_variables());
+  for (int round = 0; round <= max_flip_rounds; ++round) {
+    for (int k = 0; k < nlp.num_variables(); ++k) nlp.set_variable_bounds(k, lo0[k], hi0[k]);
+    for (int v : fixed) nlp.set_variable_bounds(v, 0.0, 0.0);
+    for (int k = 0; k < nlp.num_variables(); ++k)
+      point.z[k] = std::clamp(point.z[k], nlp.variable_lower()[k], nlp.variable_upper()[k]);
+    double left = 0.0;
+    if (settings_.wall_limit_s > 0) {
+      left = settings_.wall_limit_s - std::chrono::duration<double>(Clock::now() - t0).count();
+      if (left <= 0) break;
+    }
+    const NlpResult r = ipopt_.solve(nlp, point, left, settings_.iteration_limit);
+    out.nlp_solves += 1;
+    out.iterations += r.iterations;
+    out.branch_solves += 1;
+    out.ipopt_status = r.ipopt_status;
+    const Vector z = r.point.z.head(n);
+    const Certificate cert = certify(mpcc, z);
+    spdlog::debug("      ipopt branch  round {:<3} {:<26} {:>5} it {:>8.3f} s  compl {:.1e}  viol {:.1e}",
+                  round, ipopt_status_name(r.ipopt_status), r.iterations, r.seconds,
+                  cert.max_complementarity, cert.max_violation);
+    if (!r.converged() || !cert.within(settings_.violation_tol, tol)) {
+      // The first branch solve failing is the result's status; a later one keeps the last
+      // certified branch point.
+      if (out.branch_solves == 1)
+        out.status = r.ipopt_status == 2 ? MpccStatus::kInfeasible : MpccStatus::kFailed;
+      break;
+    }
+    double f = kInf;
+    if (!mpcc.objective(z, f)) break;
+    out.status = MpccStatus::kSolved;
+    out.z = z;
+    out.objective = f;
+    out.certificate = cert;
+    out.polished = true;
+    point = r.point;
+    // Warm starts continue from this branch point (fixed sides at 0, with the branch's duals),
+    // with Ipopt's initial barrier parameter: those sides must move inside their bounds again.
+    out.elastic_point = point;
+    out.elastic_point.mu = 0.0;
+    // Multipliers of the fixed sides: dL/dx = grad f + J^T lambda (Ipopt's signs: at a lower
+    // bound the bound multiplier is this value, >= 0 at a stationary point).
+    if (!nlp.gradient(point.z, grad) || !nlp.jacobian(point.z, jac)) break;
+    nu = grad;
+    const auto& pat = nlp.jacobian_pattern();
+    for (int e = 0; e < pat.size(); ++e) nu[pat.cols[e]] += jac[e] * point.lambda[pat.rows[e]];
+    const double scale = std::max(1.0, grad.lpNorm<Eigen::Infinity>());
+    int flips = 0;
+    for (int i = 0; i < pairs; ++i) {
+      const int a = fixed[i], b = a == nlp.u(i) ? nlp.w(i) : nlp.u(i);
+      // b is at its bound 0 when it is below the tolerance or, at an interior-point solution
+      // (b * z_b = mu), when its bound multiplier exceeds it (b ~ sqrt(mu), e.g. 2e-5).
+      const bool biactive = point.z[b] <= tol || point.z_lo[b] >= point.z[b];
+      if (!biactive || nu[a] >= -1e-6 * scale) continue;
+      fixed[i] = b;  // biactive, and releasing a descends: hold b at 0 instead
+      ++flips;
+    }
+    out.flips += flips;
+    spdlog::debug("      branch round {}: T objective {:.6f}, {} flips", round, f, flips);
+    if (flips == 0) {
+      out.b_stationary = true;
+      break;
+    }
+  }
+  out.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  return out;
+}
+
 MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta) {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
@@ -87,7 +179,8 @@ MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta) {
   double previous_residual = -1.0;
   while (true) {
     nlp.set_zeta(zeta);
-    const NlpResult r = ipopt_.solve(nlp, start, remaining(), settings_.iteration_limit);
+    const double mu = settings_.resume_barrier && start.has_duals() ? start.mu : 0.0;
+    const NlpResult r = ipopt_.solve(nlp, start, remaining(), settings_.iteration_limit, mu);
     record(r, "elastic");
     out.zeta = zeta;
     if (r.ipopt_status == 2) {

@@ -47,6 +47,7 @@ struct ElasticSettings {
   bool polish = true;
   double wall_limit_s = 0.0;  // per solve() call; 0 = none
   int iteration_limit = 0;    // per Ipopt solve; 0 = Ipopt's max_iter only
+  bool resume_barrier = false;  // a warm start's first solve starts at the barrier it ended with
 };
 
 // How well z satisfies the MPCC, in the MPCC's own units.
@@ -72,6 +73,10 @@ struct MpccResult {
   double zeta = 0.0;       // penalty at the end
   bool polished = false;
   NlpPoint elastic_point;  // elastic primal-dual point (before polish), for warm starts
+  // solve_branch only: branch solves run, pairs flipped, and whether the end point passed the
+  // sign test of every biactive pair (strongly stationary on its branch, hence B-stationary).
+  int branch_solves = 0, flips = 0;
+  bool b_stationary = false;
   bool solved() const { return status == MpccStatus::kSolved; }
 };
 
@@ -82,12 +87,20 @@ class ElasticSolver {
   const ElasticSettings& settings() const { return settings_; }
   void set_iteration_limit(int n) { settings_.iteration_limit = n; }
   void set_wall_limit(double seconds) { settings_.wall_limit_s = seconds; }  // 0 = none
+  void set_resume_barrier(bool on) { settings_.resume_barrier = on; }
 
   // From an MPCC point z0.
   MpccResult solve(const Mpcc& mpcc, const ConstVectorRef& z0);
   // From an earlier result on an MPCC of the same structure (bounds may
   // differ): primal, duals and zeta are reused.
   MpccResult solve(const Mpcc& mpcc, const MpccResult& warm);
+  // From a certified result: the branch NLP (for every pair the smaller side at `from` fixed
+  // to 0, as polish does), solved; then, while some biactive pair (both sides 0) has a
+  // negative multiplier on its fixed side (releasing that side descends), those pairs are
+  // flipped (the other side fixed instead) and the branch solved again, at most
+  // max_flip_rounds times. Every branch point is certified on the MPCC; the result is the
+  // last certified one (status kSolved), or `from`'s failure status if none is.
+  MpccResult solve_branch(const Mpcc& mpcc, const MpccResult& from, int max_flip_rounds);
 
  private:
   MpccResult run(const Mpcc& mpcc, NlpPoint start, double zeta);

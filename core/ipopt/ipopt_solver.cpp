@@ -99,10 +99,11 @@ class TnlpAdapter : public Ipopt::TNLP {
                         Eigen::Map<const Vector>(lambda, m), out);
   }
 
-  bool intermediate_callback(Ipopt::AlgorithmMode, Index iter, Number, Number, Number, Number,
+  bool intermediate_callback(Ipopt::AlgorithmMode, Index iter, Number, Number, Number, Number mu,
                              Number, Number, Number, Number, Index,
                              const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
     out_.iterations = iter;
+    mu_ = mu;
     if (iteration_limit_ > 0 && iter >= iteration_limit_) return false;
     return !(has_deadline_ && Clock::now() > deadline_);
   }
@@ -116,6 +117,7 @@ class TnlpAdapter : public Ipopt::TNLP {
     out_.point.z_hi = Eigen::Map<const Vector>(z_U, n);
     out_.point.lambda = Eigen::Map<const Vector>(lambda, m);
     out_.objective = obj_value;
+    out_.point.mu = mu_;
   }
 
  private:
@@ -125,6 +127,7 @@ class TnlpAdapter : public Ipopt::TNLP {
   Clock::time_point deadline_;
   bool has_deadline_;
   int iteration_limit_;
+  double mu_ = 0.0;  // the barrier parameter of the last iteration
 };
 
 double parse_number(const IpoptOption& o, bool integer) {
@@ -192,12 +195,13 @@ IpoptSolver::IpoptSolver(const std::vector<IpoptOption>& options)
       throw InputError(o.where + ": key 'ipopt." + o.name + "': Ipopt rejects the value '" +
                        o.value + "'");
   }
+  list->GetNumericValue("mu_init", mu_init_, "");
 }
 
 IpoptSolver::~IpoptSolver() = default;
 
 NlpResult IpoptSolver::solve(const Nlp& nlp, const NlpPoint& start, double wall_limit_s,
-                             int iteration_limit) {
+                             int iteration_limit, double mu_init) {
   DISCO_CHECK(start.z.size() == nlp.num_variables(), "start point has the wrong size");
   if (start.has_duals()) {
     DISCO_CHECK(start.lambda.size() == nlp.num_constraints(), "warm-start duals: wrong size");
@@ -209,6 +213,7 @@ NlpResult IpoptSolver::solve(const Nlp& nlp, const NlpPoint& start, double wall_
                                  std::chrono::duration<double>(wall_limit_s));
   auto& app = app_->app;
   app->Options()->SetStringValue("warm_start_init_point", start.has_duals() ? "yes" : "no");
+  app->Options()->SetNumericValue("mu_init", mu_init > 0.0 ? mu_init : mu_init_);
   Ipopt::SmartPtr<Ipopt::TNLP> tnlp =
       new TnlpAdapter(nlp, start, out, deadline, wall_limit_s > 0.0, iteration_limit);
   out.ipopt_status = static_cast<int>(app->OptimizeTNLP(tnlp));

@@ -30,6 +30,7 @@ struct NlpPoint {
   Vector lambda;  // constraint multipliers
   Vector z_lo;    // lower-bound multipliers (>= 0)
   Vector z_hi;    // upper-bound multipliers (>= 0)
+  double mu = 0.0;  // Ipopt's barrier parameter at the last iteration (0: not from a solve)
   // Duals exist when the bound multipliers do (an NLP may have no rows).
   bool has_duals() const { return z_lo.size() > 0; }
 };
@@ -56,12 +57,15 @@ class IpoptSolver {
   // Solves `nlp` from start.z; when start has duals (from a solve of an NLP
   // of the same shape) they warm-start Ipopt. A positive limit stops the
   // solve after that many seconds or iterations (status User_Requested_Stop).
+  // A positive mu_init replaces the configured initial barrier parameter for
+  // this solve (a warm start close to a solution should not start far inside).
   NlpResult solve(const Nlp& nlp, const NlpPoint& start, double wall_limit_s = 0.0,
-                  int iteration_limit = 0);
+                  int iteration_limit = 0, double mu_init = 0.0);
 
  private:
   struct Application;  // holds Ipopt's reference-counted application
   std::unique_ptr<Application> app_;
+  double mu_init_ = 0.1;  // the configured one (Ipopt's default unless set)
 };
 
 }  // namespace disco
