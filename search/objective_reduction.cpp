@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <utility>
 
 #include <spdlog/fmt/fmt.h>
 
@@ -18,7 +19,7 @@ constexpr double kInsideBound = 1e-6;
 // A new best must be this much (relative) below the old one.
 constexpr double kBetter = 1e-7;
 
-// Step 2 of the kBranch strategy (see objective_reduction.h). `solve`, `budget`, `record`,
+// A minimisation by Minimizer::kBranch (see objective_reduction.h). `solve`, `budget`, `record`,
 // `take_best` and `out_of_time` are reduce_objective's: one elastic solve under the time
 // limit, the wall limit for the next solve, the solve log, "this certified result is the new
 // best", and whether the time limit has passed.
@@ -30,6 +31,7 @@ void branch_descent(RobotProblem& problem, ElasticSolver& solver, const Reductio
   auto branch = [&](const MpccResult& from) {
     problem.limit_horizon(out.T_best);
     budget();
+    solver.set_iteration_limit(0);
     MpccResult r = solver.solve_branch(problem.program(), from, cfg.flip_rounds);
     const double T_f = problem.horizon(r.z);
     const bool improved = r.solved() && T_f < out.T_best * (1.0 - kBetter);
@@ -37,59 +39,49 @@ void branch_descent(RobotProblem& problem, ElasticSolver& solver, const Reductio
     if (improved) take_best(std::move(r));
     return improved;
   };
-  // 2a. One segment of the elastic minimisation (step_iterations Ipopt iterations) from the
-  // feasible point. Converged, it is a local optimum (one-robot scenes end here); else a
-  // branch descent from its point. (A branch descent straight from the feasible point commits
-  // to the branch of a slow motion: on paper A1 the elastic minimisation from there ended 2 %
-  // above the optimum it reaches from the feasible point.)
-  solver.set_iteration_limit(cfg.step_iterations);
-  problem.limit_horizon(out.T_best);
-  {
-    MpccResult r = solve(out.best);
+  // One segment of the elastic minimisation: at most step_iterations Ipopt iterations from
+  // `from` under T_f <= bound.
+  auto segment = [&](const MpccResult& from, double bound) {
+    problem.limit_horizon(bound);
+    solver.set_iteration_limit(cfg.step_iterations);
+    MpccResult r = solve(from);
+    solver.set_iteration_limit(0);
     const bool improved = r.solved() && problem.horizon(r.z) < out.T_best * (1.0 - kBetter);
-    record("minimize", out.T_best, r, improved);
+    record("minimize", bound, r, improved);
     if (improved) take_best(MpccResult(r));
-    if (!out_of_time()) {
-      solver.set_iteration_limit(0);
-      branch(r);
-      solver.set_iteration_limit(cfg.step_iterations);
-    }
-    if (r.solved()) {
-      solver.set_iteration_limit(0);
-      return;
-    }
+    return std::make_pair(std::move(r), improved);
+  };
+  // From the best point to a local optimum.
+  // a. One segment from the best point. Converged, it is a local optimum (one-robot scenes
+  // end here); else a branch descent from its point. (A branch descent straight from the
+  // feasible point commits to the branch of a slow motion: on paper A1 the elastic
+  // minimisation from there ended 2 % above the optimum it reaches from the feasible point.)
+  {
+    auto [r, improved] = segment(out.best, out.T_best);
+    if (!out_of_time()) branch(r);
+    if (r.solved()) return;
   }
-  // 2b. More segments, the first from the best branch point, each continuing the last (its
-  // primal-dual point and barrier parameter) and bounded by the T_f it starts from (the bound
-  // never forces it); after each one that ends below the best, a branch descent from its point
-  // (the smaller side of every pair fixed: even at complementarity 3e-2 that was the branch of
-  // a new best, on three_robots_contact).
-  MpccResult segment = out.best;
-  double T_segment = out.T_best;
+  // b. More segments, the first from the best branch point, each continuing the last (its
+  // primal-dual point and barrier parameter) and bounded by the T_f it starts from (the
+  // bound never forces it); after each one that ends below the best, a branch descent from
+  // its point (the smaller side of every pair fixed: even at complementarity 3e-2 that was
+  // the branch of a new best, on three_robots_contact).
+  MpccResult from = out.best;
+  double T_from = out.T_best;
   int idle = 0;  // segments in a row that gave no new best
   solver.set_resume_barrier(true);
   for (int k = 0; k < cfg.max_solves && !out_of_time(); ++k) {
-    problem.limit_horizon(T_segment);
-    MpccResult r = solve(segment);
-    T_segment = problem.horizon(r.z);
-    const bool improved = r.solved() && T_segment < out.T_best * (1.0 - kBetter);
-    record("minimize", T_segment, r, improved);
-    if (improved) take_best(MpccResult(r));
-    bool better = improved;
-    if (!out_of_time() && T_segment < out.T_best) {
-      solver.set_iteration_limit(0);
-      better = branch(r) || better;
-      solver.set_iteration_limit(cfg.step_iterations);
-    }
+    auto [r, better] = segment(from, T_from);
+    T_from = problem.horizon(r.z);
+    if (!out_of_time() && T_from < out.T_best) better = branch(r) || better;
     // A segment that converged (certified) is a local optimum of the elastic program.
     if (r.solved() || r.status == MpccStatus::kInfeasible) break;
     // Not tight: raising zeta no longer moves it, and the next segment starts where it ended.
     if (r.status == MpccStatus::kElasticNotTight && !better) break;
     idle = better ? 0 : idle + 1;
     if (idle >= 2) break;
-    segment = std::move(r);
+    from = std::move(r);
   }
-  solver.set_iteration_limit(0);
   solver.set_resume_barrier(false);
 }
 }  // namespace
@@ -121,9 +113,8 @@ ReductionSettings reduction_settings(const Settings& s) {
   if (r.minimize_iterations < 0)
     throw InputError(s.where("reduction.minimize_iterations") +
                      ": key 'reduction.minimize_iterations': must be >= 0");
-  r.strategy = choice<ReductionStrategy>(s, "reduction.strategy",
-                                         {{"branch", ReductionStrategy::kBranch},
-                                          {"homotopy", ReductionStrategy::kHomotopy}});
+  r.minimizer = choice<Minimizer>(s, "reduction.minimize",
+                                  {{"elastic", Minimizer::kElastic}, {"branch", Minimizer::kBranch}});
   r.flip_rounds = s.integer("reduction.flip_rounds");
   if (r.flip_rounds < 0)
     throw InputError(s.where("reduction.flip_rounds") + ": key 'reduction.flip_rounds': must be >= 0");
@@ -232,7 +223,12 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
   // 2. Inexact objective reduction.
   // Minimise T_f <= T_best from the best point (steps 2 and 3 below); true if
   // the solve converged (certified), i.e. the best point is now a local optimum.
+  auto out_of_time = [&] { return cfg.time_limit > 0 && elapsed() > cfg.time_limit; };
   auto minimize = [&](int iteration_limit) {
+    if (cfg.minimizer == Minimizer::kBranch) {
+      branch_descent(problem, solver, cfg, out, solve, budget, record, take_best, out_of_time);
+      return true;  // a local optimum: a descent stops at one, or at the time limit
+    }
     problem.limit_horizon(out.T_best);
     solver.set_iteration_limit(iteration_limit);
     MpccResult r = solve(out.best);
@@ -246,15 +242,6 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
     }
     return r.solved();
   };
-  if (cfg.strategy == ReductionStrategy::kBranch) {
-    branch_descent(problem, solver, cfg, out, solve, budget, record, take_best,
-                   [&] { return cfg.time_limit > 0 && elapsed() > cfg.time_limit; });
-    solver.set_wall_limit(own_wall_limit);
-    problem.limit_horizon(kInf);
-    out.status = MpccStatus::kSolved;
-    out.seconds = elapsed();
-    return out;
-  }
   double rate = cfg.rate;
   bool fixed_steps = false;
   bool at_local_optimum = false;  // the best point is a converged minimisation's
@@ -266,7 +253,6 @@ ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
   problem.limit_horizon(kInf);
   const double smallest = std::max(problem.lower_bound().value_or(0.0),
                                    problem.horizon(problem.program().variable_lower()));
-  auto out_of_time = [&] { return cfg.time_limit > 0 && elapsed() > cfg.time_limit; };
   for (int k = 0; k < cfg.max_solves; ++k) {
     if (out_of_time()) break;
     // Never ask for less than that: such a step cannot succeed.
