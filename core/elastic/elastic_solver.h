@@ -94,12 +94,14 @@ class ElasticSolver {
   // From an earlier result on an MPCC of the same structure (bounds may
   // differ): primal, duals and zeta are reused.
   MpccResult solve(const Mpcc& mpcc, const MpccResult& warm);
-  // From a certified result: the branch NLP (for every pair the smaller side at `from` fixed
-  // to 0, as polish does), solved; then, while some biactive pair (both sides 0) has a
-  // negative multiplier on its fixed side (releasing that side descends), those pairs are
-  // flipped (the other side fixed instead) and the branch solved again, at most
-  // max_flip_rounds times. Every branch point is certified on the MPCC; the result is the
-  // last certified one (status kSolved), or `from`'s failure status if none is.
+  // From a result, certified or not (its elastic point says which side of each pair is the
+  // smaller): the branch NLP (for every pair that side fixed to 0, as polish does), solved;
+  // then, while some biactive pair (the free side at its bound too) has a negative multiplier
+  // on its fixed side (releasing that side descends), those pairs are flipped (the other side
+  // fixed instead) and the branch solved again, at most max_flip_rounds times. Every branch
+  // point is certified on the MPCC; the result is the last certified one (status kSolved,
+  // warm starts continue from its primal-dual point), or, if the first branch solve fails,
+  // `from`'s point with that solve's status (kInfeasible or kFailed).
   MpccResult solve_branch(const Mpcc& mpcc, const MpccResult& from, int max_flip_rounds);
 
  private:
