@@ -66,6 +66,9 @@
 //   Measured (start 0, paper A3): the long minimisation after the fixed steps is replaced
 //   by a 60-iteration segment and a 16-iteration branch descent that lands on the same
 //   optimum 9.832592.
+// The control flow above is search/reduction_phases.h: named phases and one transition
+// function; reduce_objective runs each phase's solve, passing the elastic solver its limits
+// (iteration cap, the time limit's deadline, barrier) as an ElasticRequest.
 // Only certified (kSolved) points ever become the best. If no horizon gives
 // one, the scene is reported kInfeasible: Ipopt found the elastic NLP locally
 // infeasible, or complementarity could not be made tight (the elastic mode
@@ -88,6 +91,17 @@ enum class Minimizer {
   kBranch,   // a descent by branches: elastic segments and branch descents (below)
 };
 
+// What the best point is known to be, for the problem min T_f (solution.json "stationarity").
+enum class Stationarity {
+  kFeasible,  // certified feasible: a step of the homotopy, no stationarity shown
+  kStrong,    // a converged elastic-mode minimisation with complementarity tight and the bound
+              // on T_f inactive: a KKT point of the elastic NLP at eps = 0, strongly stationary
+              // for the MPCC (paper Section IV)
+  kB,         // a branch descent that ended without a flip, the bound on T_f inactive: no
+              // biactive pair's fixed side has a negative multiplier, B-stationary
+};
+std::string to_string(Stationarity s);  // "feasible", "strongly stationary", "B-stationary"
+
 // The schedule; its values come from configs/disco.yaml (reduction_settings), so no
 // defaults are kept here.
 struct ReductionSettings {
@@ -104,14 +118,15 @@ struct ReductionSettings {
 };
 ReductionSettings reduction_settings(const Settings& settings);  // `feasibility:` + `reduction:`
 
-// One elastic-mode solve (possibly several Ipopt solves inside).
+// One elastic-mode solve (possibly several Ipopt solves inside), as the solve log shows it.
 struct SolveRecord {
   std::string phase;   // "feasibility", "perturbed feasibility", "reduction", "fixed step" or
                        // "minimize"
   double bound = 0.0;  // s: the fixed T_f (feasibility phases) or the upper bound on T_f
   double T_f = 0.0;    // s: at the solve's end
   MpccStatus status = MpccStatus::kFailed;
-  int ipopt_status = 0;
+  NlpOutcome outcome = NlpOutcome::kFailed;  // of its last NLP solve
+  int ipopt_status = 0;                       // ... Ipopt's, for messages
   Certificate certificate;
   int nlp_solves = 0, iterations = 0;
   double seconds = 0.0;
@@ -132,6 +147,7 @@ struct ReductionResult {
                                             // kFailed with Ipopt's, "failed (Ipopt: NAME)"
   double T_best = 0.0;       // s
   MpccResult best;           // the certified solve that gave T_best
+  Stationarity stationarity = Stationarity::kFeasible;  // of best
   std::vector<SolveRecord> solves;
   int nlp_solves = 0, iterations = 0;
   double seconds = 0.0;
@@ -164,7 +180,7 @@ using PerturbFunction = std::function<Perturbation(const Vector& feasible)>;
 
 // `guess` defaults to RobotProblem::straight_line_guess; without `perturb`,
 // step 1b is skipped.
-ReductionResult reduce_objective(RobotProblem& problem, ElasticSolver& solver,
+ReductionResult reduce_objective(RobotProblem& problem, const ElasticSolver& solver,
                                  const ReductionSettings& settings, const GuessFunction& guess = {},
                                  const SolveCallback& on_solve = {},
                                  const PerturbFunction& perturb = {});

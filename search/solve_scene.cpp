@@ -55,6 +55,7 @@ SceneSolve solve_scene(const Scene& scene, const Settings& settings, const Start
   out.info.iterations = out.result.iterations;
   if (out.result.found) {
     out.z = out.result.best.z;
+    out.info.stationarity = to_string(out.result.stationarity);
   } else if (!out.result.solves.empty()) {
     out.info.detail = out.result.feasibility_detail;
     out.info.certificate = out.result.solves.back().certificate;

@@ -332,9 +332,12 @@ TEST(IpoptSolverSolve, WallLimitStopsALongSolve) {
   EXPECT_NEAR(full.point.z[0], 1.0, 1e-6);
   ASSERT_GE(full.iterations, 15);
   // With 10 ms per gradient, a 40 ms limit allows only a few iterations.
-  const NlpResult cut = solver.solve(SlowRosenbrock(10), start, 0.04);
-  EXPECT_EQ(cut.ipopt_status, 5) << ipopt_status_name(cut.ipopt_status);
+  NlpLimits limits;
+  limits.deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(40);
+  const NlpResult cut = solver.solve(SlowRosenbrock(10), start, limits);
+  EXPECT_EQ(cut.outcome, NlpOutcome::kTimeLimit) << ipopt_status_name(cut.ipopt_status);
   EXPECT_EQ(ipopt_status_name(cut.ipopt_status), "User_Requested_Stop");
+  EXPECT_EQ(describe(cut.outcome, cut.ipopt_status), "time limit");
   EXPECT_FALSE(cut.converged());
   EXPECT_LT(cut.iterations, full.iterations);
   EXPECT_LT(cut.seconds, 0.5);
@@ -375,6 +378,55 @@ TEST(IpoptSolverSolve, WarmStartUsesBoundMultipliersWithoutRows) {
     ASSERT_TRUE(warm.converged());
     EXPECT_LE(warm.iterations, 1);
   }
+}
+
+// warm_start_init_point is a setting: "no" starts every solve's duals cold, so a solve from
+// the solution of the same NLP (with its multipliers) takes the cold start's way back.
+TEST(IpoptSolverSolve, WarmStartInitPointNoStartsTheDualsCold) {
+  // min (x + 1)^2 + (y - 2)^2, x >= 0, with a free row y: x* = 0, bound multiplier 2.
+  PolynomialProgram p;
+  const Affine x = Affine::variable(0), y = Affine::variable(1);
+  p.add_variable(0.0, kInf, 1.0);
+  p.add_variable(-kInf, kInf, 0.0);
+  p.add(p.add_row(-kInf, kInf), 1.0, y);
+  p.add(PolynomialProgram::kObjective, 1.0, x + Affine(1.0), x + Affine(1.0));
+  p.add(PolynomialProgram::kObjective, 1.0, y - Affine(2.0), y - Affine(2.0));
+  p.finalize();
+  auto iterations_from_the_solution = [&](const std::string& warm_start) {
+    auto options = disco_yaml_ipopt_options();
+    for (auto& o : options)
+      if (o.name == "warm_start_init_point") o.value = warm_start;
+    IpoptSolver solver(options);
+    NlpPoint start;
+    start.z = p.initial_point();
+    const NlpResult cold = solver.solve(p, start);
+    EXPECT_TRUE(cold.converged());
+    const NlpResult again = solver.solve(p, cold.point);
+    EXPECT_TRUE(again.converged());
+    EXPECT_NEAR(again.point.z[0], 0.0, 1e-6);
+    return again.iterations;
+  };
+  const int warm = iterations_from_the_solution("yes");
+  const int cold = iterations_from_the_solution("no");
+  EXPECT_LE(warm, 1);
+  EXPECT_GT(cold, warm);
+}
+
+// A solve stopped at its iteration cap says so, and is not a failure of Ipopt's.
+TEST(IpoptSolverSolve, AnIterationCapIsItsOwnOutcome) {
+  IpoptSolver solver(disco_yaml_ipopt_options());
+  NlpPoint start;
+  start.z = (Vector(2) << -1.2, 1.0).finished();
+  NlpLimits limits;
+  limits.iterations = 3;
+  const NlpResult cut = solver.solve(SlowRosenbrock(0), start, limits);
+  EXPECT_EQ(cut.outcome, NlpOutcome::kIterationCap) << ipopt_status_name(cut.ipopt_status);
+  EXPECT_EQ(cut.iterations, 3);
+  EXPECT_FALSE(cut.converged());
+  EXPECT_EQ(describe(cut.outcome, cut.ipopt_status), "iteration cap");
+  const NlpResult full = solver.solve(SlowRosenbrock(0), start);
+  EXPECT_EQ(full.outcome, NlpOutcome::kConverged);
+  EXPECT_GT(full.iterations, 3);
 }
 
 }  // namespace

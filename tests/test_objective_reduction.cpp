@@ -155,6 +155,15 @@ void print(const ReductionResult& result) {
   for (const SolveRecord& r : result.solves)
     std::printf("  %-22s bound %.6f T_f %.6f %s%s\n", r.phase.c_str(), r.bound, r.T_f,
                 to_string(r.status).c_str(), r.improved ? " *" : "");
+  std::printf("  best: %s\n", to_string(result.stationarity).c_str());
+}
+
+// The solve that gave the best point: the last one marked improved.
+const SolveRecord& best_solve(const ReductionResult& result) {
+  for (auto it = result.solves.rbegin(); it != result.solves.rend(); ++it)
+    if (it->improved) return *it;
+  ADD_FAILURE() << "no solve improved";
+  return result.solves.back();
 }
 
 TEST(ObjectiveReduction, NoStepIsAskedBelowTheLowerBound) {
@@ -221,6 +230,7 @@ TEST(ObjectiveReduction, AnEvaluationFailureIsReportedAndTheNextHorizonIsTried) 
   print(later);
   ASSERT_TRUE(later.found) << later.feasibility_detail;
   EXPECT_EQ(later.solves[0].status, MpccStatus::kFailed);
+  EXPECT_EQ(later.solves[0].outcome, NlpOutcome::kInvalidNumber);
   EXPECT_EQ(ipopt_status_name(later.solves[0].ipopt_status), "Invalid_Number_Detected");
   EXPECT_EQ(later.solves[1].phase, "feasibility");
   EXPECT_TRUE(later.solves[1].improved);
@@ -261,6 +271,14 @@ TEST(ObjectiveReduction, ALocalOptimumEndsTheLoopOnceAProbeBelowItFails) {
       }
     }
     EXPECT_GE(optima, 1) << name << ": no local optimum reached";
+    // A step of the homotopy in T_f is only feasible; a minimisation that converged inside its
+    // bound is a KKT point of the elastic NLP at eps = 0.
+    const SolveRecord& b = best_solve(result);
+    if (b.phase == "fixed step" || b.phase == "feasibility") {
+      EXPECT_EQ(result.stationarity, Stationarity::kFeasible) << name;
+    } else if (b.T_f < b.bound * (1 - 1e-6)) {
+      EXPECT_EQ(result.stationarity, Stationarity::kStrong) << name;
+    }
     // Two robots: the minimisation is no longer the last solve; a probe follows.
     if (std::string(name) == "two_robots_swap_avoid") {
       EXPECT_EQ(result.solves.back().phase, "fixed step") << name << ": no probe below the optimum";
@@ -335,6 +353,18 @@ TEST(ObjectiveReduction, TheBranchMinimizerDescendsAndReachesTheOneRobotOptimum)
       }
     }
     EXPECT_LE(result.T_best, best_fixed) << name;
+    // A best from a branch descent is B-stationary only when no flip was left.
+    const SolveRecord& b = best_solve(result);
+    if (b.phase == "branch" && result.stationarity == Stationarity::kB) {
+      EXPECT_TRUE(result.best.b_stationary) << name;
+    }
+    if (b.phase == "branch" && !result.best.b_stationary) {
+      EXPECT_EQ(result.stationarity, Stationarity::kFeasible) << name;
+    }
+    // The one robot reaches its optimum by a minimisation: a stationary point.
+    if (std::string(name) == "one_robot_axis") {
+      EXPECT_NE(result.stationarity, Stationarity::kFeasible) << name;
+    }
     if (std::string(name) == "one_robot_axis") {
       const double lb = problem.lower_bound().value();
       EXPECT_GE(result.T_best, lb * (1 - 1e-9));

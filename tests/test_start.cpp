@@ -78,8 +78,6 @@ ElasticSettings base_elastic() {
   e.complementarity_tol = 1e-7;
   e.violation_tol = 2e-7;
   e.polish = false;
-  e.wall_limit_s = 9.0;
-  e.iteration_limit = 11;
   return e;
 }
 
@@ -94,8 +92,7 @@ bool same_elastic(const ElasticSettings& a, const ElasticSettings& b) {
   return a.formulation == b.formulation && a.zeta == b.zeta && a.zeta_factor == b.zeta_factor &&
          a.zeta_max == b.zeta_max && a.stall_change == b.stall_change &&
          a.complementarity_tol == b.complementarity_tol && a.violation_tol == b.violation_tol &&
-         a.polish == b.polish && a.wall_limit_s == b.wall_limit_s &&
-         a.iteration_limit == b.iteration_limit;
+         a.polish == b.polish;
 }
 
 bool same_spec(const StartSpec& a, const StartSpec& b) {

@@ -32,6 +32,7 @@ inline std::vector<IpoptOption> disco_yaml_ipopt_options() {
       {"bound_relax_factor", "0.0", where},
       {"mu_strategy", "adaptive", where},
       {"fixed_variable_treatment", "make_parameter", where},
+      {"warm_start_init_point", "yes", where},
       {"warm_start_bound_push", "1.0e-9", where},
       {"warm_start_bound_frac", "1.0e-9", where},
       {"warm_start_slack_bound_push", "1.0e-9", where},

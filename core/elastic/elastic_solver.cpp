@@ -43,19 +43,32 @@ Certificate certify(const Mpcc& mpcc, const ConstVectorRef& z) {
   return cert;
 }
 
-MpccResult ElasticSolver::solve(const Mpcc& mpcc, const ConstVectorRef& z0) {
+namespace {
+// One Ipopt solve's limits under a request (a solve started past the deadline stops at its
+// first iteration).
+NlpLimits limits(const ElasticRequest& request, double mu_init = 0.0) {
+  return NlpLimits{request.iteration_limit, request.deadline, mu_init};
+}
+bool past(const ElasticRequest& request) {
+  return request.deadline && std::chrono::steady_clock::now() >= *request.deadline;
+}
+}  // namespace
+
+MpccResult ElasticSolver::solve(const Mpcc& mpcc, const ConstVectorRef& z0,
+                                const ElasticRequest& request) const {
   ElasticNlp shape(mpcc, settings_.formulation, settings_.zeta);
   NlpPoint start;
   start.z = shape.lift(z0);
-  return run(mpcc, std::move(start), settings_.zeta);
+  return run(mpcc, std::move(start), settings_.zeta, request);
 }
 
-MpccResult ElasticSolver::solve(const Mpcc& mpcc, const MpccResult& warm) {
-  return run(mpcc, warm.elastic_point, warm.zeta > 0 ? warm.zeta : settings_.zeta);
+MpccResult ElasticSolver::solve(const Mpcc& mpcc, const MpccResult& warm,
+                                const ElasticRequest& request) const {
+  return run(mpcc, warm.elastic_point, warm.zeta > 0 ? warm.zeta : settings_.zeta, request);
 }
 
 MpccResult ElasticSolver::solve_branch(const Mpcc& mpcc, const MpccResult& from,
-                                       int max_flip_rounds) {
+                                       int max_flip_rounds, const ElasticRequest& request) const {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   const int n = mpcc.num_variables();
@@ -84,15 +97,12 @@ MpccResult ElasticSolver::solve_branch(const Mpcc& mpcc, const MpccResult& from,
     for (int v : fixed) nlp.set_variable_bounds(v, 0.0, 0.0);
     for (int k = 0; k < nlp.num_variables(); ++k)
       point.z[k] = std::clamp(point.z[k], nlp.variable_lower()[k], nlp.variable_upper()[k]);
-    double left = 0.0;
-    if (settings_.wall_limit_s > 0) {
-      left = settings_.wall_limit_s - std::chrono::duration<double>(Clock::now() - t0).count();
-      if (left <= 0) break;
-    }
-    const NlpResult r = ipopt_.solve(nlp, point, left, settings_.iteration_limit);
+    if (past(request)) break;
+    const NlpResult r = ipopt_.solve(nlp, point, limits(request));
     out.nlp_solves += 1;
     out.iterations += r.iterations;
     out.branch_solves += 1;
+    out.outcome = r.outcome;
     out.ipopt_status = r.ipopt_status;
     const Vector z = r.point.z.head(n);
     const Certificate cert = certify(mpcc, z);
@@ -103,7 +113,8 @@ MpccResult ElasticSolver::solve_branch(const Mpcc& mpcc, const MpccResult& from,
       // The first branch solve failing is the result's status; a later one keeps the last
       // certified branch point.
       if (out.branch_solves == 1)
-        out.status = r.ipopt_status == 2 ? MpccStatus::kInfeasible : MpccStatus::kFailed;
+        out.status = r.outcome == NlpOutcome::kInfeasible ? MpccStatus::kInfeasible
+                                                          : MpccStatus::kFailed;
       break;
     }
     double f = kInf;
@@ -146,15 +157,10 @@ MpccResult ElasticSolver::solve_branch(const Mpcc& mpcc, const MpccResult& from,
   return out;
 }
 
-MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta) {
+MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta,
+                              const ElasticRequest& request) const {
   using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
-  auto remaining = [&]() -> double {
-    if (settings_.wall_limit_s <= 0) return 0.0;
-    const double left =
-        settings_.wall_limit_s - std::chrono::duration<double>(Clock::now() - t0).count();
-    return std::max(left, 1e-3);
-  };
   const int n = mpcc.num_variables();
   ElasticNlp nlp(mpcc, settings_.formulation, zeta);
   DISCO_CHECK(start.z.size() == nlp.num_variables(), "warm start of another shape");
@@ -162,6 +168,7 @@ MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta) {
   MpccResult out;
   // `what` names the Ipopt solve for the --verbose log (debug level).
   auto record = [&](const NlpResult& r, const char* what) {
+    out.outcome = r.outcome;
     out.ipopt_status = r.ipopt_status;
     out.nlp_solves += 1;
     out.iterations += r.iterations;
@@ -179,11 +186,11 @@ MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta) {
   double previous_residual = -1.0;
   while (true) {
     nlp.set_zeta(zeta);
-    const double mu = settings_.resume_barrier && start.has_duals() ? start.mu : 0.0;
-    const NlpResult r = ipopt_.solve(nlp, start, remaining(), settings_.iteration_limit, mu);
+    const double mu = request.resume_barrier && start.has_duals() ? start.mu : 0.0;
+    const NlpResult r = ipopt_.solve(nlp, start, limits(request, mu));
     record(r, "elastic");
     out.zeta = zeta;
-    if (r.ipopt_status == 2) {
+    if (r.outcome == NlpOutcome::kInfeasible) {
       out.status = MpccStatus::kInfeasible;
       break;
     }
@@ -215,9 +222,7 @@ MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta) {
   // 3. Polish: fix the smaller side of every pair to zero and re-solve.
   // Worth it when the elastic solve converged near complementarity.
   const bool worth_polishing = converged && out.certificate.max_complementarity < 1e-2;
-  if (settings_.polish && worth_polishing &&
-      (settings_.wall_limit_s <= 0 ||
-       std::chrono::duration<double>(Clock::now() - t0).count() < settings_.wall_limit_s)) {
+  if (settings_.polish && worth_polishing && !past(request)) {
     const MpccResult before = out;
     const Vector& x = out.elastic_point.z;
     for (int i = 0; i < mpcc.num_complementarity_pairs(); ++i) {
@@ -228,7 +233,7 @@ MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta) {
     for (int k = 0; k < nlp.num_variables(); ++k)  // start inside the new bounds
       polish_start.z[k] = std::clamp(polish_start.z[k], nlp.variable_lower()[k],
                                      nlp.variable_upper()[k]);
-    const NlpResult r = ipopt_.solve(nlp, polish_start, remaining(), settings_.iteration_limit);
+    const NlpResult r = ipopt_.solve(nlp, polish_start, limits(request));
     record(r, "polish");
     if (r.converged() &&
         out.certificate.within(settings_.violation_tol, settings_.complementarity_tol)) {

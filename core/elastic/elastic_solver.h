@@ -21,6 +21,7 @@
 // tolerances.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "core/elastic/elastic_nlp.h"
@@ -45,8 +46,12 @@ struct ElasticSettings {
   double complementarity_tol = 1e-6;
   double violation_tol = 1e-6;
   bool polish = true;
-  double wall_limit_s = 0.0;  // per solve() call; 0 = none
-  int iteration_limit = 0;    // per Ipopt solve; 0 = Ipopt's max_iter only
+};
+
+// One call's own limits, as data: the solver keeps no per-call state.
+struct ElasticRequest {
+  int iteration_limit = 0;           // per Ipopt solve; 0 = Ipopt's max_iter only
+  std::optional<Deadline> deadline;  // for the whole call; none = no limit
   bool resume_barrier = false;  // a warm start's first solve starts at the barrier it ended with
 };
 
@@ -63,7 +68,8 @@ Certificate certify(const Mpcc& mpcc, const ConstVectorRef& z);
 
 struct MpccResult {
   MpccStatus status = MpccStatus::kFailed;
-  int ipopt_status = 0;    // of the last NLP solve
+  NlpOutcome outcome = NlpOutcome::kFailed;  // of the last NLP solve
+  int ipopt_status = 0;    // of the last NLP solve (Ipopt's, for messages)
   Vector z;                // MPCC variables
   double objective = 0.0;  // f(z), without the elastic penalty
   Certificate certificate;
@@ -85,15 +91,14 @@ class ElasticSolver {
   ElasticSolver(IpoptSolver& ipopt, ElasticSettings settings)
       : ipopt_(ipopt), settings_(settings) {}
   const ElasticSettings& settings() const { return settings_; }
-  void set_iteration_limit(int n) { settings_.iteration_limit = n; }
-  void set_wall_limit(double seconds) { settings_.wall_limit_s = seconds; }  // 0 = none
-  void set_resume_barrier(bool on) { settings_.resume_barrier = on; }
 
   // From an MPCC point z0.
-  MpccResult solve(const Mpcc& mpcc, const ConstVectorRef& z0);
+  MpccResult solve(const Mpcc& mpcc, const ConstVectorRef& z0,
+                   const ElasticRequest& request = {}) const;
   // From an earlier result on an MPCC of the same structure (bounds may
   // differ): primal, duals and zeta are reused.
-  MpccResult solve(const Mpcc& mpcc, const MpccResult& warm);
+  MpccResult solve(const Mpcc& mpcc, const MpccResult& warm,
+                   const ElasticRequest& request = {}) const;
   // From a result, certified or not (its elastic point says which side of each pair is the
   // smaller): the branch NLP (for every pair that side fixed to 0, as polish does), solved;
   // then, while some biactive pair (the free side at its bound too) has a negative multiplier
@@ -102,10 +107,12 @@ class ElasticSolver {
   // point is certified on the MPCC; the result is the last certified one (status kSolved,
   // warm starts continue from its primal-dual point), or, if the first branch solve fails,
   // `from`'s point with that solve's status (kInfeasible or kFailed).
-  MpccResult solve_branch(const Mpcc& mpcc, const MpccResult& from, int max_flip_rounds);
+  MpccResult solve_branch(const Mpcc& mpcc, const MpccResult& from, int max_flip_rounds,
+                          const ElasticRequest& request = {}) const;
 
  private:
-  MpccResult run(const Mpcc& mpcc, NlpPoint start, double zeta);
+  MpccResult run(const Mpcc& mpcc, NlpPoint start, double zeta,
+                 const ElasticRequest& request) const;
   IpoptSolver& ipopt_;
   ElasticSettings settings_;
 };

@@ -22,14 +22,11 @@ using Clock = std::chrono::steady_clock;
 // non-finite values into `false`.
 class TnlpAdapter : public Ipopt::TNLP {
  public:
-  TnlpAdapter(const Nlp& nlp, const NlpPoint& start, NlpResult& out, Clock::time_point deadline,
-              bool has_deadline, int iteration_limit)
-      : nlp_(nlp),
-        start_(start),
-        out_(out),
-        deadline_(deadline),
-        has_deadline_(has_deadline),
-        iteration_limit_(iteration_limit) {}
+  TnlpAdapter(const Nlp& nlp, const NlpPoint& start, NlpResult& out, const NlpLimits& limits)
+      : nlp_(nlp), start_(start), out_(out), limits_(limits) {}
+
+  // Why the adapter stopped the solve (kFailed: it did not).
+  NlpOutcome stopped() const { return stopped_; }
 
   bool get_nlp_info(Index& n, Index& m, Index& nnz_jac, Index& nnz_h,
                     IndexStyleEnum& style) override {
@@ -104,8 +101,15 @@ class TnlpAdapter : public Ipopt::TNLP {
                              const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
     out_.iterations = iter;
     mu_ = mu;
-    if (iteration_limit_ > 0 && iter >= iteration_limit_) return false;
-    return !(has_deadline_ && Clock::now() > deadline_);
+    if (limits_.iterations > 0 && iter >= limits_.iterations) {
+      stopped_ = NlpOutcome::kIterationCap;
+      return false;
+    }
+    if (limits_.deadline && Clock::now() > *limits_.deadline) {
+      stopped_ = NlpOutcome::kTimeLimit;
+      return false;
+    }
+    return true;
   }
 
   void finalize_solution(Ipopt::SolverReturn, Index n, const Number* x, const Number* z_L,
@@ -124,9 +128,8 @@ class TnlpAdapter : public Ipopt::TNLP {
   const Nlp& nlp_;
   const NlpPoint& start_;
   NlpResult& out_;
-  Clock::time_point deadline_;
-  bool has_deadline_;
-  int iteration_limit_;
+  const NlpLimits& limits_;
+  NlpOutcome stopped_ = NlpOutcome::kFailed;
   double mu_ = 0.0;  // the barrier parameter of the last iteration
 };
 
@@ -140,7 +143,38 @@ double parse_number(const IpoptOption& o, bool integer) {
   return v;
 }
 
+NlpOutcome outcome_of(int ipopt_status, NlpOutcome stopped) {
+  switch (ipopt_status) {
+    case Ipopt::Solve_Succeeded:
+    case Ipopt::Solved_To_Acceptable_Level: return NlpOutcome::kConverged;
+    case Ipopt::Infeasible_Problem_Detected: return NlpOutcome::kInfeasible;
+    case Ipopt::User_Requested_Stop: return stopped;
+    case Ipopt::Maximum_Iterations_Exceeded: return NlpOutcome::kMaxIterations;
+    case Ipopt::Invalid_Number_Detected: return NlpOutcome::kInvalidNumber;
+    default: return NlpOutcome::kFailed;
+  }
+}
+
 }  // namespace
+
+std::string to_string(NlpOutcome outcome) {
+  switch (outcome) {
+    case NlpOutcome::kConverged: return "converged";
+    case NlpOutcome::kInfeasible: return "infeasible";
+    case NlpOutcome::kIterationCap: return "iteration cap";
+    case NlpOutcome::kTimeLimit: return "time limit";
+    case NlpOutcome::kMaxIterations: return "max_iter";
+    case NlpOutcome::kInvalidNumber: return "invalid number";
+    case NlpOutcome::kFailed: return "failed";
+  }
+  return "failed";
+}
+
+std::string describe(NlpOutcome outcome, int ipopt_status) {
+  if (outcome == NlpOutcome::kIterationCap || outcome == NlpOutcome::kTimeLimit)
+    return to_string(outcome);
+  return "Ipopt: " + ipopt_status_name(ipopt_status);
+}
 
 std::string ipopt_status_name(int status) {
   switch (status) {
@@ -196,12 +230,14 @@ IpoptSolver::IpoptSolver(const std::vector<IpoptOption>& options)
                        o.value + "'");
   }
   list->GetNumericValue("mu_init", mu_init_, "");
+  std::string warm;
+  list->GetStringValue("warm_start_init_point", warm, "");
+  warm_start_ = warm == "yes";
 }
 
 IpoptSolver::~IpoptSolver() = default;
 
-NlpResult IpoptSolver::solve(const Nlp& nlp, const NlpPoint& start, double wall_limit_s,
-                             int iteration_limit, double mu_init) {
+NlpResult IpoptSolver::solve(const Nlp& nlp, const NlpPoint& start, const NlpLimits& limits) {
   DISCO_CHECK(start.z.size() == nlp.num_variables(), "start point has the wrong size");
   if (start.has_duals()) {
     DISCO_CHECK(start.lambda.size() == nlp.num_constraints(), "warm-start duals: wrong size");
@@ -209,14 +245,14 @@ NlpResult IpoptSolver::solve(const Nlp& nlp, const NlpPoint& start, double wall_
   }
   NlpResult out;
   const auto t0 = Clock::now();
-  const auto deadline = t0 + std::chrono::duration_cast<Clock::duration>(
-                                 std::chrono::duration<double>(wall_limit_s));
   auto& app = app_->app;
-  app->Options()->SetStringValue("warm_start_init_point", start.has_duals() ? "yes" : "no");
-  app->Options()->SetNumericValue("mu_init", mu_init > 0.0 ? mu_init : mu_init_);
-  Ipopt::SmartPtr<Ipopt::TNLP> tnlp =
-      new TnlpAdapter(nlp, start, out, deadline, wall_limit_s > 0.0, iteration_limit);
+  app->Options()->SetStringValue("warm_start_init_point",
+                                 warm_start_ && start.has_duals() ? "yes" : "no");
+  app->Options()->SetNumericValue("mu_init", limits.mu_init > 0.0 ? limits.mu_init : mu_init_);
+  auto* adapter = new TnlpAdapter(nlp, start, out, limits);
+  Ipopt::SmartPtr<Ipopt::TNLP> tnlp = adapter;
   out.ipopt_status = static_cast<int>(app->OptimizeTNLP(tnlp));
+  out.outcome = outcome_of(out.ipopt_status, adapter->stopped());
   out.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   if (out.point.z.size() != nlp.num_variables()) {  // Ipopt gave up before finalize
     out.point = start;

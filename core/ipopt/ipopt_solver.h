@@ -6,12 +6,16 @@
 // unknown name or a bad value is an InputError naming where it was given.
 //
 // solve() runs one Ipopt solve from a start point, optionally warm-started
-// with the multipliers of an earlier solve of an NLP of the same shape. MUMPS
+// with the multipliers of an earlier solve of an NLP of the same shape, within
+// the limits of an NlpLimits (a request: the solver keeps nothing of it), and
+// says how it ended as an NlpOutcome (Ipopt's own status is kept for messages). MUMPS
 // (Ipopt's linear solver here) is not thread-safe: call solve() from one
 // thread of a process at a time.
 #pragma once
 
+#include <chrono>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,17 +39,46 @@ struct NlpPoint {
   bool has_duals() const { return z_lo.size() > 0; }
 };
 
+using Deadline = std::chrono::steady_clock::time_point;
+
+// What one solve may spend, and where its barrier starts.
+struct NlpLimits {
+  int iterations = 0;               // stop after this many iterations (0: Ipopt's max_iter only)
+  std::optional<Deadline> deadline;  // stop at the first iteration past it (none: no limit)
+  double mu_init = 0.0;             // > 0: this solve's initial barrier parameter instead of
+                                    // the configured one (a warm start close to a solution
+                                    // should not start far inside)
+};
+
+// How an NLP solve ended, in disco's terms.
+enum class NlpOutcome {
+  kConverged,      // Ipopt's Solve_Succeeded or Solved_To_Acceptable_Level
+  kInfeasible,     // Infeasible_Problem_Detected: locally infeasible
+  kIterationCap,   // stopped at NlpLimits::iterations
+  kTimeLimit,      // stopped at NlpLimits::deadline
+  kMaxIterations,  // Ipopt's own max_iter
+  kInvalidNumber,  // an evaluation failed: NaN, Inf or an error in a callback
+  kFailed,         // any other Ipopt status (ipopt_status says which)
+};
+// "converged", "infeasible", "iteration cap", "time limit", "max_iter", "invalid number",
+// "failed".
+std::string to_string(NlpOutcome outcome);
+
 struct NlpResult {
   NlpPoint point;
   double objective = 0.0;
-  int ipopt_status = 0;  // Ipopt::ApplicationReturnStatus
+  NlpOutcome outcome = NlpOutcome::kFailed;
+  int ipopt_status = 0;  // Ipopt::ApplicationReturnStatus, for messages
   int iterations = 0;
   double seconds = 0.0;
-  bool converged() const { return ipopt_status == 0 || ipopt_status == 1; }
+  bool converged() const { return outcome == NlpOutcome::kConverged; }
 };
 
 // Ipopt's name for a return status, e.g. "Solve_Succeeded".
 std::string ipopt_status_name(int status);
+// How a solve ended, for messages: "iteration cap" or "time limit" when a limit of disco's
+// stopped it, else Ipopt's status, e.g. "Ipopt: Invalid_Number_Detected".
+std::string describe(NlpOutcome outcome, int ipopt_status);
 
 class IpoptSolver {
  public:
@@ -55,17 +88,15 @@ class IpoptSolver {
   IpoptSolver& operator=(const IpoptSolver&) = delete;
 
   // Solves `nlp` from start.z; when start has duals (from a solve of an NLP
-  // of the same shape) they warm-start Ipopt. A positive limit stops the
-  // solve after that many seconds or iterations (status User_Requested_Stop).
-  // A positive mu_init replaces the configured initial barrier parameter for
-  // this solve (a warm start close to a solution should not start far inside).
-  NlpResult solve(const Nlp& nlp, const NlpPoint& start, double wall_limit_s = 0.0,
-                  int iteration_limit = 0, double mu_init = 0.0);
+  // of the same shape) they warm-start Ipopt, if the configured warm_start_init_point is
+  // "yes" (configs/disco.yaml; "no": every solve starts its duals cold).
+  NlpResult solve(const Nlp& nlp, const NlpPoint& start, const NlpLimits& limits = {});
 
  private:
   struct Application;  // holds Ipopt's reference-counted application
   std::unique_ptr<Application> app_;
-  double mu_init_ = 0.1;  // the configured one (Ipopt's default unless set)
+  double mu_init_ = 0.1;     // the configured one (Ipopt's default unless set)
+  bool warm_start_ = false;  // the configured warm_start_init_point (Ipopt's default: no)
 };
 
 }  // namespace disco

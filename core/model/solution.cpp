@@ -33,6 +33,7 @@ json solution_json(const RobotProblem& problem, const Vector& z, const SolutionI
   doc["scenario"] = si.name;
   doc["status"] = info.status;
   if (!info.detail.empty()) doc["status_detail"] = info.detail;
+  if (!info.stationarity.empty()) doc["stationarity"] = info.stationarity;
   doc["T_f"] = has ? json(problem.horizon(z)) : json(nullptr);
   doc["N_t"] = N;
   doc["h"] = has ? json(problem.horizon(z) / N) : json(nullptr);

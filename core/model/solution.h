@@ -28,6 +28,7 @@ namespace disco {
 struct SolutionInfo {
   std::string status;  // "solved", "infeasible", "failed"
   std::string detail;  // when not solved: the last feasibility solve's own status
+  std::string stationarity;  // when solved: what the point is known to be for min T_f
   Certificate certificate;
   double wall_s = 0.0;
   int nlp_solves = 0, iterations = 0;

@@ -1,0 +1,122 @@
+#include "search/reduction_phases.h"
+
+#include <algorithm>
+
+#include "core/util/check.h"
+
+namespace disco {
+namespace {
+// Feasibility attempts, each at twice the horizon of the last.
+constexpr int kFeasibilityAttempts = 3;
+// The rate never grows beyond this.
+constexpr double kMaxRate = 0.5;
+
+// The loop after it ends: a last minimisation if the best came from fixed steps not
+// minimised since, else done.
+ReductionState finish(ReductionState s, const PhaseOutcome& o) {
+  const bool fixed = s.phase == Phase::kFixedStep || s.phase == Phase::kProbe;
+  s.phase = fixed && !s.minimized && !o.out_of_time ? Phase::kFinalMinimize : Phase::kDone;
+  return s;
+}
+
+// `s` asks for a step of kind s.phase next: run it, or end the loop. A step whose bound lies
+// below `smallest` cannot succeed, so the rate shrinks until it does not.
+ReductionState admit(ReductionState s, const PhaseOutcome& o, const ReductionSettings& cfg) {
+  if (o.out_of_time) {
+    s.phase = Phase::kDone;
+    return s;
+  }
+  if (s.steps >= cfg.max_solves) return finish(s, o);
+  while (s.rate >= cfg.min_rate && step_bound(s, o.T_best) < o.smallest) s.rate *= cfg.shrink;
+  if (s.rate < cfg.min_rate) return finish(s, o);
+  return s;
+}
+
+ReductionState with_phase(ReductionState s, Phase phase) {
+  s.phase = phase;
+  return s;
+}
+}  // namespace
+
+std::string to_string(Phase phase) {
+  switch (phase) {
+    case Phase::kFeasibility: return "feasibility";
+    case Phase::kPerturbed: return "perturbed feasibility";
+    case Phase::kMinimizingStep: return "reduction";
+    case Phase::kFixedStep:
+    case Phase::kProbe: return "fixed step";
+    case Phase::kEarlyMinimize:
+    case Phase::kFinalMinimize: return "minimize";
+    case Phase::kDone: return "done";
+  }
+  return "done";
+}
+
+bool is_step(Phase phase) {
+  return phase == Phase::kMinimizingStep || phase == Phase::kFixedStep || phase == Phase::kProbe;
+}
+
+ReductionState begin_reduction(const ReductionSettings& cfg) {
+  ReductionState s;
+  s.rate = cfg.rate;
+  return s;
+}
+
+ReductionState next_phase(const ReductionState& state, const PhaseOutcome& o,
+                          const ReductionSettings& cfg) {
+  ReductionState s = state;
+  switch (state.phase) {
+    case Phase::kFeasibility:
+      s.attempt += 1;
+      if (o.solved) {
+        if (o.perturb && !o.out_of_time) return with_phase(s, Phase::kPerturbed);
+        return admit(with_phase(s, Phase::kMinimizingStep), o, cfg);
+      }
+      return with_phase(s, s.attempt < kFeasibilityAttempts && !o.out_of_time
+                               ? Phase::kFeasibility
+                               : Phase::kDone);
+    case Phase::kPerturbed: return admit(with_phase(s, Phase::kMinimizingStep), o, cfg);
+    case Phase::kMinimizingStep:
+      s.steps += 1;
+      // It stalled: retry this bound as a fixed step, and take fixed steps from now on.
+      if (o.failed) return admit(with_phase(s, Phase::kFixedStep), o, cfg);
+      if (o.improved) {
+        s.rate = std::min(s.rate * cfg.grow, kMaxRate);
+        // Converged strictly inside its bound: a local optimum, probed with fixed steps.
+        s.minimized = o.inside_bound;
+        return admit(with_phase(s, o.inside_bound ? Phase::kProbe : Phase::kMinimizingStep), o,
+                     cfg);
+      }
+      s.rate *= cfg.shrink;
+      return admit(s, o, cfg);
+    case Phase::kFixedStep:
+    case Phase::kProbe:
+      s.steps += 1;
+      if (o.improved) {  // the homotopy goes on (from below the old optimum, after a probe)
+        s.rate = std::min(s.rate * cfg.grow, kMaxRate);
+        s.minimized = false;
+        return admit(with_phase(s, Phase::kFixedStep), o, cfg);
+      }
+      s.rate *= cfg.shrink;
+      if (state.phase == Phase::kProbe) return finish(s, o);  // nothing below the optimum
+      // The first fixed step that fails: the homotopy has passed the local optimum's
+      // horizon, so minimise from the best point now.
+      if (!s.minimized && !s.cut_short && !o.out_of_time) {
+        s.minimized = true;
+        return with_phase(s, Phase::kEarlyMinimize);
+      }
+      return admit(s, o, cfg);
+    case Phase::kEarlyMinimize:
+      // Converged: a local optimum, probed below. Cut at minimize_iterations: it changed
+      // nothing, the fixed steps go on and the loop minimises again at its end.
+      if (o.solved) return admit(with_phase(s, Phase::kProbe), o, cfg);
+      if (cfg.minimize_iterations > 0) s.minimized = false, s.cut_short = true;
+      return admit(with_phase(s, Phase::kFixedStep), o, cfg);
+    case Phase::kFinalMinimize:
+    case Phase::kDone: return with_phase(s, Phase::kDone);
+  }
+  DISCO_CHECK(false, "unknown reduction phase");
+  return s;
+}
+
+}  // namespace disco

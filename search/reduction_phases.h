@@ -1,0 +1,68 @@
+// disco — the control flow of the objective reduction (search/objective_reduction.h says
+// what each step does), as data: named phases and one transition function. Nothing here
+// solves anything, so each transition is tested alone (tests/test_reduction_phases.cpp);
+// reduce_objective runs the solve of the current phase and asks next_phase where to go.
+//
+//   kFeasibility --solved--> kPerturbed (if asked) --> kMinimizingStep
+//        |  not solved: again at twice the horizon, three attempts, then kDone
+//   kMinimizingStep --failed (did not converge)--> kFixedStep (same rate)
+//                   --new best inside its bound--> kProbe (a local optimum)
+//   kFixedStep --failed, first time--> kEarlyMinimize --converged--> kProbe
+//                                                     --not converged--> kFixedStep
+//   kProbe --new best--> kFixedStep;  --no new best--> kDone
+//   any step, before it runs: past the time limit -> kDone; max_solves steps made, or no rate
+//   >= min_rate keeps the bound above the smallest horizon -> kFinalMinimize (fixed steps
+//   that have not been minimised since their last new best) or kDone.
+#pragma once
+
+#include <string>
+
+#include "search/objective_reduction.h"
+
+namespace disco {
+
+enum class Phase {
+  kFeasibility,     // step 1: the elastic MPCC at a fixed, generous horizon
+  kPerturbed,       // step 1b: once more from a perturbation of the feasible point
+  kMinimizingStep,  // step 2: minimise T_f <= (1 - rate) T_best, at most step_iterations
+  kFixedStep,       // step 2: solve at T_f = (1 - rate) T_best (the homotopy in the horizon)
+  kProbe,           // a fixed step below a local optimum: the loop ends if it fails
+  kEarlyMinimize,   // step 3 right after the first fixed step that fails
+  kFinalMinimize,   // step 3 once the loop ends
+  kDone,
+};
+std::string to_string(Phase phase);  // the solve log's name: "feasibility", "fixed step", ...
+
+// A minimising or fixed step (kMinimizingStep, kFixedStep, kProbe).
+bool is_step(Phase phase);
+
+struct ReductionState {
+  Phase phase = Phase::kFeasibility;
+  int attempt = 0;          // feasibility attempts made
+  double rate = 0.0;        // r: the next step asks for T_f <= (1 - r) T_best
+  int steps = 0;            // steps made (minimising, fixed and probes)
+  bool minimized = false;   // minimised since the last fixed step that gave a new best
+  bool cut_short = false;   // an early minimisation stopped at minimize_iterations
+};
+
+// What the current phase's solve gave, and the run's facts the next choice depends on.
+struct PhaseOutcome {
+  bool solved = false;        // certified; for a minimisation: it converged (a local optimum)
+  bool improved = false;      // it gave a new best
+  bool failed = false;        // MpccStatus::kFailed
+  bool inside_bound = false;  // its T_f lies strictly inside its bound (a minimising step's)
+  double T_best = 0.0;        // s, the best after the phase
+  double smallest = 0.0;      // s, no step is asked below this (lower bound, model minimum)
+  bool perturb = false;       // step 1b is asked for
+  bool out_of_time = false;   // the time limit has passed
+};
+
+ReductionState begin_reduction(const ReductionSettings& settings);
+ReductionState next_phase(const ReductionState& state, const PhaseOutcome& outcome,
+                          const ReductionSettings& settings);
+// The T_f a step asks for (its bound, or its fixed horizon), in seconds.
+inline double step_bound(const ReductionState& state, double T_best) {
+  return (1.0 - state.rate) * T_best;
+}
+
+}  // namespace disco

@@ -1,0 +1,279 @@
+// The objective reduction's phases (search/reduction_phases.h): every transition of
+// next_phase, without a solve.
+#include <gtest/gtest.h>
+
+#include "search/reduction_phases.h"
+
+namespace disco {
+namespace {
+
+ReductionSettings schedule() {
+  return {.rate = 0.05, .grow = 2.0, .shrink = 0.5, .min_rate = 0.01, .max_solves = 10,
+          .step_iterations = 60};
+}
+
+ReductionState in(Phase phase, double rate = 0.05) {
+  ReductionState s;
+  s.phase = phase;
+  s.rate = rate;
+  s.attempt = 1;
+  return s;
+}
+
+// A phase's outcome at T_best = 10 s, with no step bound below 1 s.
+PhaseOutcome outcome() {
+  PhaseOutcome o;
+  o.T_best = 10.0;
+  o.smallest = 1.0;
+  return o;
+}
+PhaseOutcome improved(bool inside_bound = false) {
+  PhaseOutcome o = outcome();
+  o.solved = o.improved = true;
+  o.inside_bound = inside_bound;
+  return o;
+}
+PhaseOutcome no_gain() { return outcome(); }  // e.g. infeasible or not tight
+PhaseOutcome failed() {
+  PhaseOutcome o = outcome();
+  o.failed = true;
+  return o;
+}
+
+TEST(ReductionPhases, TheReductionBeginsWithFeasibilityAtTheConfiguredRate) {
+  const ReductionState s = begin_reduction(schedule());
+  EXPECT_EQ(s.phase, Phase::kFeasibility);
+  EXPECT_EQ(s.attempt, 0);
+  EXPECT_EQ(s.rate, 0.05);
+  EXPECT_EQ(s.steps, 0);
+  EXPECT_FALSE(s.minimized);
+}
+
+TEST(ReductionPhases, AFeasiblePointLeadsToAMinimizingStep) {
+  const ReductionState s = next_phase(begin_reduction(schedule()), improved(), schedule());
+  EXPECT_EQ(s.phase, Phase::kMinimizingStep);
+  EXPECT_EQ(s.attempt, 1);
+}
+
+TEST(ReductionPhases, AFeasiblePointLeadsToThePerturbationWhenOneIsAsked) {
+  PhaseOutcome o = improved();
+  o.perturb = true;
+  EXPECT_EQ(next_phase(begin_reduction(schedule()), o, schedule()).phase, Phase::kPerturbed);
+  o.out_of_time = true;  // no time for it: the loop ends
+  EXPECT_EQ(next_phase(begin_reduction(schedule()), o, schedule()).phase, Phase::kDone);
+}
+
+TEST(ReductionPhases, TheFeasibilityPhaseTriesThreeHorizons) {
+  ReductionState s = begin_reduction(schedule());
+  s = next_phase(s, failed(), schedule());
+  EXPECT_EQ(s.phase, Phase::kFeasibility);
+  EXPECT_EQ(s.attempt, 1);
+  s = next_phase(s, no_gain(), schedule());
+  EXPECT_EQ(s.phase, Phase::kFeasibility);
+  s = next_phase(s, failed(), schedule());
+  EXPECT_EQ(s.phase, Phase::kDone);
+  EXPECT_EQ(s.attempt, 3);
+}
+
+TEST(ReductionPhases, NoFurtherFeasibilityAttemptPastTheTimeLimit) {
+  PhaseOutcome o = failed();
+  o.out_of_time = true;
+  EXPECT_EQ(next_phase(begin_reduction(schedule()), o, schedule()).phase, Phase::kDone);
+}
+
+TEST(ReductionPhases, ThePerturbedFeasibilityLeadsToAMinimizingStepWhateverItGave) {
+  for (const PhaseOutcome& o : {improved(), no_gain(), failed()})
+    EXPECT_EQ(next_phase(in(Phase::kPerturbed), o, schedule()).phase, Phase::kMinimizingStep);
+}
+
+TEST(ReductionPhases, AnImprovingMinimizingStepOnItsBoundGrowsTheRateAndGoesOn) {
+  const ReductionState s = next_phase(in(Phase::kMinimizingStep), improved(), schedule());
+  EXPECT_EQ(s.phase, Phase::kMinimizingStep);
+  EXPECT_DOUBLE_EQ(s.rate, 0.1);
+  EXPECT_EQ(s.steps, 1);
+  EXPECT_FALSE(s.minimized);
+}
+
+TEST(ReductionPhases, TheRateGrowsToOneHalfAtMost) {
+  const ReductionState s = next_phase(in(Phase::kMinimizingStep, 0.4), improved(), schedule());
+  EXPECT_DOUBLE_EQ(s.rate, 0.5);
+}
+
+TEST(ReductionPhases, AMinimizingStepInsideItsBoundIsALocalOptimumProbedBelow) {
+  const ReductionState s =
+      next_phase(in(Phase::kMinimizingStep), improved(/*inside_bound=*/true), schedule());
+  EXPECT_EQ(s.phase, Phase::kProbe);
+  EXPECT_TRUE(s.minimized);
+  EXPECT_DOUBLE_EQ(s.rate, 0.1);
+}
+
+TEST(ReductionPhases, AStalledMinimizingStepIsRetriedAsAFixedStepAtTheSameRate) {
+  const ReductionState s = next_phase(in(Phase::kMinimizingStep), failed(), schedule());
+  EXPECT_EQ(s.phase, Phase::kFixedStep);
+  EXPECT_DOUBLE_EQ(s.rate, 0.05);
+  EXPECT_EQ(s.steps, 1);
+}
+
+TEST(ReductionPhases, AMinimizingStepWithoutGainShrinksTheRateAndGoesOn) {
+  const ReductionState s = next_phase(in(Phase::kMinimizingStep), no_gain(), schedule());
+  EXPECT_EQ(s.phase, Phase::kMinimizingStep);
+  EXPECT_DOUBLE_EQ(s.rate, 0.025);
+}
+
+TEST(ReductionPhases, AnImprovingFixedStepContinuesTheHomotopy) {
+  ReductionState from = in(Phase::kFixedStep);
+  from.minimized = true;
+  const ReductionState s = next_phase(from, improved(), schedule());
+  EXPECT_EQ(s.phase, Phase::kFixedStep);
+  EXPECT_DOUBLE_EQ(s.rate, 0.1);
+  EXPECT_FALSE(s.minimized);  // the new best has not been minimised
+}
+
+TEST(ReductionPhases, TheFirstFailedFixedStepMinimizesEarly) {
+  const ReductionState s = next_phase(in(Phase::kFixedStep), failed(), schedule());
+  EXPECT_EQ(s.phase, Phase::kEarlyMinimize);
+  EXPECT_TRUE(s.minimized);
+  EXPECT_DOUBLE_EQ(s.rate, 0.025);
+}
+
+TEST(ReductionPhases, AFailedFixedStepAfterAMinimisationGoesOnWithFixedSteps) {
+  ReductionState from = in(Phase::kFixedStep);
+  from.minimized = true;
+  const ReductionState s = next_phase(from, no_gain(), schedule());
+  EXPECT_EQ(s.phase, Phase::kFixedStep);
+  EXPECT_DOUBLE_EQ(s.rate, 0.025);
+}
+
+TEST(ReductionPhases, AnEarlyMinimisationCutShortIsNotRepeated) {
+  ReductionState from = in(Phase::kFixedStep);
+  from.cut_short = true;
+  EXPECT_EQ(next_phase(from, no_gain(), schedule()).phase, Phase::kFixedStep);
+}
+
+TEST(ReductionPhases, NoEarlyMinimisationPastTheTimeLimit) {
+  PhaseOutcome o = no_gain();
+  o.out_of_time = true;
+  EXPECT_EQ(next_phase(in(Phase::kFixedStep), o, schedule()).phase, Phase::kDone);
+}
+
+TEST(ReductionPhases, AConvergedEarlyMinimisationIsProbedBelow) {
+  ReductionState from = in(Phase::kEarlyMinimize);
+  from.minimized = true;
+  const ReductionState s = next_phase(from, improved(), schedule());
+  EXPECT_EQ(s.phase, Phase::kProbe);
+  EXPECT_TRUE(s.minimized);
+}
+
+TEST(ReductionPhases, AnUnconvergedEarlyMinimisationGoesOnWithFixedSteps) {
+  ReductionState from = in(Phase::kEarlyMinimize);
+  from.minimized = true;
+  // Uncapped: it ran to its end, the loop does not minimise again.
+  ReductionState s = next_phase(from, no_gain(), schedule());
+  EXPECT_EQ(s.phase, Phase::kFixedStep);
+  EXPECT_TRUE(s.minimized);
+  EXPECT_FALSE(s.cut_short);
+  // Capped at minimize_iterations: cut short, the loop minimises again at its end.
+  ReductionSettings capped = schedule();
+  capped.minimize_iterations = 400;
+  s = next_phase(from, no_gain(), capped);
+  EXPECT_EQ(s.phase, Phase::kFixedStep);
+  EXPECT_FALSE(s.minimized);
+  EXPECT_TRUE(s.cut_short);
+}
+
+TEST(ReductionPhases, AProbeThatFailsEndsTheLoop) {
+  ReductionState from = in(Phase::kProbe);
+  from.minimized = true;
+  EXPECT_EQ(next_phase(from, no_gain(), schedule()).phase, Phase::kDone);
+  EXPECT_EQ(next_phase(from, failed(), schedule()).phase, Phase::kDone);
+}
+
+TEST(ReductionPhases, AProbeThatImprovesLeavesTheOptimumBehind) {
+  ReductionState from = in(Phase::kProbe);
+  from.minimized = true;
+  const ReductionState s = next_phase(from, improved(), schedule());
+  EXPECT_EQ(s.phase, Phase::kFixedStep);
+  EXPECT_FALSE(s.minimized);
+}
+
+// A fixed step's state with one step left before max_solves.
+ReductionState last_fixed_step(bool minimized = false) {
+  ReductionState s = in(Phase::kFixedStep);
+  s.steps = schedule().max_solves - 1;
+  s.minimized = minimized;
+  return s;
+}
+
+TEST(ReductionPhases, AfterMaxSolvesStepsFixedStepsEndWithAFinalMinimisation) {
+  const ReductionState s = next_phase(last_fixed_step(), improved(), schedule());
+  EXPECT_EQ(s.phase, Phase::kFinalMinimize);
+  EXPECT_EQ(s.steps, schedule().max_solves);
+}
+
+TEST(ReductionPhases, AfterMaxSolvesMinimizingStepsEndWithoutOne) {
+  ReductionState from = in(Phase::kMinimizingStep);
+  from.steps = schedule().max_solves - 1;
+  EXPECT_EQ(next_phase(from, improved(), schedule()).phase, Phase::kDone);
+}
+
+TEST(ReductionPhases, NoFinalMinimisationOfAnAlreadyMinimisedBest) {
+  EXPECT_EQ(next_phase(last_fixed_step(true), no_gain(), schedule()).phase, Phase::kDone);
+}
+
+TEST(ReductionPhases, NoFinalMinimisationPastTheTimeLimit) {
+  PhaseOutcome o = improved();
+  o.out_of_time = true;
+  EXPECT_EQ(next_phase(last_fixed_step(), o, schedule()).phase, Phase::kDone);
+}
+
+TEST(ReductionPhases, TheRateShrinksUntilTheBoundClearsTheSmallestHorizon) {
+  // T_best 10, smallest 9.5: rate 0.1 asks for 9, shrinks to 0.05 (9.5, allowed).
+  PhaseOutcome o = improved();
+  o.smallest = 9.5;
+  const ReductionState s = next_phase(in(Phase::kMinimizingStep, 0.05), o, schedule());
+  EXPECT_EQ(s.phase, Phase::kMinimizingStep);
+  EXPECT_DOUBLE_EQ(s.rate, 0.05);
+  EXPECT_GE(step_bound(s, o.T_best), o.smallest);
+}
+
+TEST(ReductionPhases, ARateBelowMinRateEndsTheLoop) {
+  // Fixed steps without a minimisation since: end with one.
+  ReductionState from = in(Phase::kFixedStep, 0.015);
+  from.cut_short = true;
+  EXPECT_EQ(next_phase(from, no_gain(), schedule()).phase, Phase::kFinalMinimize);
+  // Minimising steps: done.
+  EXPECT_EQ(next_phase(in(Phase::kMinimizingStep, 0.015), no_gain(), schedule()).phase,
+            Phase::kDone);
+  // No rate keeps the bound above the smallest horizon.
+  PhaseOutcome o = improved();
+  o.smallest = 9.99;
+  EXPECT_EQ(next_phase(in(Phase::kMinimizingStep), o, schedule()).phase, Phase::kDone);
+}
+
+TEST(ReductionPhases, NoStepPastTheTimeLimit) {
+  PhaseOutcome o = improved();
+  o.out_of_time = true;
+  for (Phase p : {Phase::kPerturbed, Phase::kMinimizingStep, Phase::kFixedStep, Phase::kProbe,
+                  Phase::kEarlyMinimize})
+    EXPECT_EQ(next_phase(in(p), o, schedule()).phase, Phase::kDone) << to_string(p);
+}
+
+TEST(ReductionPhases, AFinalMinimisationEndsTheRun) {
+  EXPECT_EQ(next_phase(in(Phase::kFinalMinimize), improved(), schedule()).phase, Phase::kDone);
+  EXPECT_EQ(next_phase(in(Phase::kFinalMinimize), failed(), schedule()).phase, Phase::kDone);
+}
+
+TEST(ReductionPhases, PhasesHaveTheSolveLogsNames) {
+  EXPECT_EQ(to_string(Phase::kFeasibility), "feasibility");
+  EXPECT_EQ(to_string(Phase::kPerturbed), "perturbed feasibility");
+  EXPECT_EQ(to_string(Phase::kMinimizingStep), "reduction");
+  EXPECT_EQ(to_string(Phase::kFixedStep), "fixed step");
+  EXPECT_EQ(to_string(Phase::kProbe), "fixed step");
+  EXPECT_EQ(to_string(Phase::kEarlyMinimize), "minimize");
+  EXPECT_EQ(to_string(Phase::kFinalMinimize), "minimize");
+  EXPECT_TRUE(is_step(Phase::kProbe));
+  EXPECT_FALSE(is_step(Phase::kEarlyMinimize));
+}
+
+}  // namespace
+}  // namespace disco
