@@ -30,8 +30,7 @@ enum class Horizon {
 struct StepRequest {
   Horizon horizon = Horizon::kBound;
   double seconds = 0.0;
-  int iteration_limit = 0;      // per Ipopt solve; 0 = none
-  bool resume_barrier = false;  // ElasticRequest::resume_barrier
+  int iteration_limit = 0;  // per Ipopt solve; 0 = none
 };
 
 // One run of reduce_objective: its solves, its solve log and its best point. The control flow
@@ -48,8 +47,8 @@ struct Reduction {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
   bool out_of_time() const { return cfg.time_limit > 0 && elapsed() > cfg.time_limit; }
-  ElasticRequest request(int iteration_limit, bool resume_barrier) const {
-    ElasticRequest r{iteration_limit, std::nullopt, resume_barrier};
+  ElasticRequest request(int iteration_limit) const {
+    ElasticRequest r{iteration_limit, std::nullopt};
     if (cfg.time_limit > 0)  // every solve ends by the time limit
       r.deadline = t0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                             std::chrono::duration<double>(cfg.time_limit));
@@ -62,7 +61,7 @@ struct Reduction {
       problem.fix_horizon(q.seconds);
     else
       problem.limit_horizon(q.seconds);
-    return solver.solve(problem.program(), from, request(q.iteration_limit, q.resume_barrier));
+    return solver.solve(problem.program(), from, request(q.iteration_limit));
   }
   void record(const std::string& phase, double bound, const MpccResult& r, bool improved) {
     SolveRecord rec{phase, bound, problem.horizon(r.z), r.status, r.outcome, r.ipopt_status,
@@ -97,7 +96,7 @@ struct Reduction {
       return true;  // a descent stops at a local optimum, or at the time limit
     }
     const double bound = out.T_best;
-    MpccResult r = step({Horizon::kBound, bound, iteration_limit, false}, out.best);
+    MpccResult r = step({Horizon::kBound, bound, iteration_limit}, out.best);
     const bool improved = r.solved() && problem.horizon(r.z) < bound;
     record("minimize", bound, r, improved);
     const bool converged = r.solved();
@@ -110,7 +109,7 @@ struct Reduction {
     const double bound = out.T_best;
     problem.limit_horizon(bound);
     MpccResult r =
-        solver.solve_branch(problem.program(), from, cfg.flip_rounds, request(0, false));
+        solver.solve_branch(problem.program(), from, cfg.flip_rounds, request(0));
     const bool improved = r.solved() && problem.horizon(r.z) < bound * (1.0 - kBetter);
     record("branch", bound, r, improved);
     if (improved) take_best(std::move(r), r.b_stationary, bound);
@@ -118,8 +117,8 @@ struct Reduction {
   }
   // One segment of the elastic minimisation: at most step_iterations Ipopt iterations from
   // `from` under T_f <= bound; the second member says whether it gave a new best.
-  std::pair<MpccResult, bool> segment(const MpccResult& from, double bound, bool resume) {
-    MpccResult r = step({Horizon::kBound, bound, cfg.step_iterations, resume}, from);
+  std::pair<MpccResult, bool> segment(const MpccResult& from, double bound) {
+    MpccResult r = step({Horizon::kBound, bound, cfg.step_iterations}, from);
     const bool improved = r.solved() && problem.horizon(r.z) < out.T_best * (1.0 - kBetter);
     record("minimize", bound, r, improved);
     if (improved) take_best(MpccResult(r), true, bound);  // improved: converged
@@ -132,20 +131,20 @@ struct Reduction {
     // feasible point commits to the branch of a slow motion: on paper A1 the elastic
     // minimisation from there ended 2 % above the optimum it reaches from the feasible point.)
     {
-      auto [r, improved] = segment(out.best, out.T_best, false);
+      auto [r, improved] = segment(out.best, out.T_best);
       if (!out_of_time()) branch(r);
       if (r.solved()) return;
     }
     // b. More segments, the first from the best branch point, each continuing the last (its
-    // primal-dual point and barrier parameter) and bounded by the T_f it starts from (the
-    // bound never forces it); after each one that ends below the best, a branch descent from
+    // primal-dual point) and bounded by the T_f it starts from (the bound never forces it);
+    // after each one that ends below the best, a branch descent from
     // its point (the smaller side of every pair fixed: even at complementarity 3e-2 that was
     // the branch of a new best, on three_robots_contact).
     MpccResult from = out.best;
     double T_from = out.T_best;
     int idle = 0;  // segments in a row that gave no new best
     for (int k = 0; k < cfg.max_solves && !out_of_time(); ++k) {
-      auto [r, better] = segment(from, T_from, true);
+      auto [r, better] = segment(from, T_from);
       T_from = problem.horizon(r.z);
       if (!out_of_time() && T_from < out.T_best) better = branch(r) || better;
       // A segment that converged (certified) is a local optimum of the elastic program.
@@ -249,7 +248,7 @@ ReductionResult reduce_objective(RobotProblem& problem, const ElasticSolver& sol
         problem.set_horizon_max(T);
         problem.fix_horizon(T);
         const Vector z0 = guess ? guess(T) : problem.straight_line_guess(T);
-        const MpccResult r = run.step({Horizon::kFixed, T, 0, false}, z0);
+        const MpccResult r = run.step({Horizon::kFixed, T, 0}, z0);
         // A failure says why: the outcome of the last NLP solve (invalid number: an
         // evaluation gave NaN or Inf, which the Nlp wrapper turns into a failed callback).
         out.feasibility_detail = to_string(r.status);
@@ -276,7 +275,7 @@ ReductionResult reduce_objective(RobotProblem& problem, const ElasticSolver& sol
         DISCO_CHECK(p.seconds > 0.0 && p.seconds <= out.T_best,
                     "a perturbation's horizon is positive and at most the feasible one");
         DISCO_CHECK(p.guess.size() == out.best.z.size(), "a perturbation's guess is a model point");
-        MpccResult r = run.step({Horizon::kFixed, p.seconds, 0, false}, p.guess);
+        MpccResult r = run.step({Horizon::kFixed, p.seconds, 0}, p.guess);
         o.solved = r.solved();
         run.record(s.phase, p.seconds, r, o.solved);
         if (o.solved) run.take_best(std::move(r));
@@ -289,7 +288,7 @@ ReductionResult reduce_objective(RobotProblem& problem, const ElasticSolver& sol
         const double bound = step_bound(s, out.T_best);
         const bool fixed = s.phase != Phase::kMinimizingStep;
         MpccResult r = run.step(
-            {fixed ? Horizon::kFixed : Horizon::kBound, bound, fixed ? 0 : cfg.step_iterations, false},
+            {fixed ? Horizon::kFixed : Horizon::kBound, bound, fixed ? 0 : cfg.step_iterations},
             out.best);
         const double T_f = problem.horizon(r.z);
         o.solved = r.solved();

@@ -58,7 +58,7 @@
 //   negative multiplier flipped, at most flip_rounds times: a B-stationary point when no
 //   flip is left; 3-30 iterations mostly without inertia corrections); if the segment
 //   converged, stop; c) more segments, the first from the best branch point, each
-//   continuing the last (primal-dual point and Ipopt's barrier parameter) under the T_f
+//   continuing the last (its primal-dual point) under the T_f
 //   it starts from, each followed by a branch descent when its T_f is below the best; stop
 //   when a segment converges or is infeasible, when one ends elastic_not_tight without a
 //   new best, after two segments in a row without a new best, after max_solves segments
@@ -68,7 +68,7 @@
 //   optimum 9.832592.
 // The control flow above is search/reduction_phases.h: named phases and one transition
 // function; reduce_objective runs each phase's solve, passing the elastic solver its limits
-// (iteration cap, the time limit's deadline, barrier) as an ElasticRequest.
+// (iteration cap, the time limit's deadline) as an ElasticRequest.
 // Only certified (kSolved) points ever become the best. If no horizon gives
 // one, the scene is reported kInfeasible: Ipopt found the elastic NLP locally
 // infeasible, or complementarity could not be made tight (the elastic mode

@@ -46,8 +46,8 @@ Certificate certify(const Mpcc& mpcc, const ConstVectorRef& z) {
 namespace {
 // One Ipopt solve's limits under a request (a solve started past the deadline stops at its
 // first iteration).
-NlpLimits limits(const ElasticRequest& request, double mu_init = 0.0) {
-  return NlpLimits{request.iteration_limit, request.deadline, mu_init};
+NlpLimits limits(const ElasticRequest& request) {
+  return NlpLimits{request.iteration_limit, request.deadline};
 }
 bool past(const ElasticRequest& request) {
   return request.deadline && std::chrono::steady_clock::now() >= *request.deadline;
@@ -125,10 +125,8 @@ MpccResult ElasticSolver::solve_branch(const Mpcc& mpcc, const MpccResult& from,
     out.certificate = cert;
     out.polished = true;
     point = r.point;
-    // Warm starts continue from this branch point (fixed sides at 0, with the branch's duals),
-    // with Ipopt's initial barrier parameter: those sides must move inside their bounds again.
+    // Warm starts continue from this branch point (fixed sides at 0, with the branch's duals).
     out.elastic_point = point;
-    out.elastic_point.mu = 0.0;
     // Multipliers of the fixed sides: dL/dx = grad f + J^T lambda (Ipopt's signs: at a lower
     // bound the bound multiplier is this value, >= 0 at a stationary point).
     if (!nlp.gradient(point.z, grad) || !nlp.jacobian(point.z, jac)) break;
@@ -186,8 +184,7 @@ MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta,
   double previous_residual = -1.0;
   while (true) {
     nlp.set_zeta(zeta);
-    const double mu = request.resume_barrier && start.has_duals() ? start.mu : 0.0;
-    const NlpResult r = ipopt_.solve(nlp, start, limits(request, mu));
+    const NlpResult r = ipopt_.solve(nlp, start, limits(request));
     record(r, "elastic");
     out.zeta = zeta;
     if (r.outcome == NlpOutcome::kInfeasible) {

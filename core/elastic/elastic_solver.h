@@ -52,7 +52,6 @@ struct ElasticSettings {
 struct ElasticRequest {
   int iteration_limit = 0;           // per Ipopt solve; 0 = Ipopt's max_iter only
   std::optional<Deadline> deadline;  // for the whole call; none = no limit
-  bool resume_barrier = false;  // a warm start's first solve starts at the barrier it ended with
 };
 
 // How well z satisfies the MPCC, in the MPCC's own units.

@@ -96,11 +96,10 @@ class TnlpAdapter : public Ipopt::TNLP {
                         Eigen::Map<const Vector>(lambda, m), out);
   }
 
-  bool intermediate_callback(Ipopt::AlgorithmMode, Index iter, Number, Number, Number, Number mu,
+  bool intermediate_callback(Ipopt::AlgorithmMode, Index iter, Number, Number, Number, Number,
                              Number, Number, Number, Number, Index,
                              const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
     out_.iterations = iter;
-    mu_ = mu;
     if (limits_.iterations > 0 && iter >= limits_.iterations) {
       stopped_ = NlpOutcome::kIterationCap;
       return false;
@@ -121,7 +120,6 @@ class TnlpAdapter : public Ipopt::TNLP {
     out_.point.z_hi = Eigen::Map<const Vector>(z_U, n);
     out_.point.lambda = Eigen::Map<const Vector>(lambda, m);
     out_.objective = obj_value;
-    out_.point.mu = mu_;
   }
 
  private:
@@ -130,7 +128,6 @@ class TnlpAdapter : public Ipopt::TNLP {
   NlpResult& out_;
   const NlpLimits& limits_;
   NlpOutcome stopped_ = NlpOutcome::kFailed;
-  double mu_ = 0.0;  // the barrier parameter of the last iteration
 };
 
 double parse_number(const IpoptOption& o, bool integer) {
@@ -229,7 +226,6 @@ IpoptSolver::IpoptSolver(const std::vector<IpoptOption>& options)
       throw InputError(o.where + ": key 'ipopt." + o.name + "': Ipopt rejects the value '" +
                        o.value + "'");
   }
-  list->GetNumericValue("mu_init", mu_init_, "");
   std::string warm;
   list->GetStringValue("warm_start_init_point", warm, "");
   warm_start_ = warm == "yes";
@@ -248,7 +244,6 @@ NlpResult IpoptSolver::solve(const Nlp& nlp, const NlpPoint& start, const NlpLim
   auto& app = app_->app;
   app->Options()->SetStringValue("warm_start_init_point",
                                  warm_start_ && start.has_duals() ? "yes" : "no");
-  app->Options()->SetNumericValue("mu_init", limits.mu_init > 0.0 ? limits.mu_init : mu_init_);
   auto* adapter = new TnlpAdapter(nlp, start, out, limits);
   Ipopt::SmartPtr<Ipopt::TNLP> tnlp = adapter;
   out.ipopt_status = static_cast<int>(app->OptimizeTNLP(tnlp));

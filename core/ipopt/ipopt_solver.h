@@ -34,20 +34,16 @@ struct NlpPoint {
   Vector lambda;  // constraint multipliers
   Vector z_lo;    // lower-bound multipliers (>= 0)
   Vector z_hi;    // upper-bound multipliers (>= 0)
-  double mu = 0.0;  // Ipopt's barrier parameter at the last iteration (0: not from a solve)
   // Duals exist when the bound multipliers do (an NLP may have no rows).
   bool has_duals() const { return z_lo.size() > 0; }
 };
 
 using Deadline = std::chrono::steady_clock::time_point;
 
-// What one solve may spend, and where its barrier starts.
+// What one solve may spend.
 struct NlpLimits {
   int iterations = 0;               // stop after this many iterations (0: Ipopt's max_iter only)
   std::optional<Deadline> deadline;  // stop at the first iteration past it (none: no limit)
-  double mu_init = 0.0;             // > 0: this solve's initial barrier parameter instead of
-                                    // the configured one (a warm start close to a solution
-                                    // should not start far inside)
 };
 
 // How an NLP solve ended, in disco's terms.
@@ -95,7 +91,6 @@ class IpoptSolver {
  private:
   struct Application;  // holds Ipopt's reference-counted application
   std::unique_ptr<Application> app_;
-  double mu_init_ = 0.1;     // the configured one (Ipopt's default unless set)
   bool warm_start_ = false;  // the configured warm_start_init_point (Ipopt's default: no)
 };
 
