@@ -136,7 +136,8 @@ struct SolveRecord {
 // The solve log of `disco solve` (and of every start under `disco search
 // --verbose`): a header, then one line per elastic-mode solve, numbered from 1:
 // phase, T_f bound and reached, status, certificate, Ipopt solves, iterations
-// and seconds, and "*" for a new best (or Ipopt's status for a failure).
+// and seconds, and "*" for a new best (for a failure, why: "iteration cap", "time limit" or
+// Ipopt's status).
 std::string solve_log_header();
 std::string solve_log_line(int number, const SolveRecord& r);
 
