@@ -52,10 +52,6 @@ std::string to_string(Phase phase) {
   return "done";
 }
 
-bool is_step(Phase phase) {
-  return phase == Phase::kMinimizingStep || phase == Phase::kFixedStep || phase == Phase::kProbe;
-}
-
 ReductionState begin_reduction(const ReductionSettings& cfg) {
   ReductionState s;
   s.rate = cfg.rate;

@@ -33,9 +33,6 @@ enum class Phase {
 };
 std::string to_string(Phase phase);  // the solve log's name: "feasibility", "fixed step", ...
 
-// A minimising or fixed step (kMinimizingStep, kFixedStep, kProbe).
-bool is_step(Phase phase);
-
 struct ReductionState {
   Phase phase = Phase::kFeasibility;
   int attempt = 0;          // feasibility attempts made

@@ -271,8 +271,6 @@ TEST(ReductionPhases, PhasesHaveTheSolveLogsNames) {
   EXPECT_EQ(to_string(Phase::kProbe), "fixed step");
   EXPECT_EQ(to_string(Phase::kEarlyMinimize), "minimize");
   EXPECT_EQ(to_string(Phase::kFinalMinimize), "minimize");
-  EXPECT_TRUE(is_step(Phase::kProbe));
-  EXPECT_FALSE(is_step(Phase::kEarlyMinimize));
 }
 
 }  // namespace
