@@ -230,11 +230,8 @@ std::string solve_log_line(int number, const SolveRecord& r) {
 ReductionResult reduce_objective(RobotProblem& problem, const ElasticSolver& solver,
                                  const ReductionSettings& cfg, const GuessFunction& guess,
                                  const SolveCallback& on_solve, const PerturbFunction& perturb) {
-  using Clock = std::chrono::steady_clock;
-  const auto t0 = Clock::now();
-  auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - t0).count(); };
   ReductionResult out;
-  Reduction run{problem, solver, cfg, out, on_solve, t0};
+  Reduction run{problem, solver, cfg, out, on_solve, std::chrono::steady_clock::now()};
 
   // The phases (search/reduction_phases.h): each runs its solve, then asks where to go.
   PhaseOutcome o;  // facts carried from phase to phase (smallest, perturb)
@@ -246,7 +243,6 @@ ReductionResult reduce_objective(RobotProblem& problem, const ElasticSolver& sol
       case Phase::kFeasibility: {  // 1. at a fixed, generous horizon (doubled per attempt)
         const double T = feasibility_horizon(problem, cfg) * std::pow(2.0, s.attempt);
         problem.set_horizon_max(T);
-        problem.fix_horizon(T);
         const Vector z0 = guess ? guess(T) : problem.straight_line_guess(T);
         const MpccResult r = run.step({Horizon::kFixed, T, 0}, z0);
         // A failure says why: the outcome of the last NLP solve (invalid number: an
@@ -311,7 +307,7 @@ ReductionResult reduce_objective(RobotProblem& problem, const ElasticSolver& sol
   // Free the horizon again: the problem is the model itself for later users.
   problem.limit_horizon(kInf);
   if (out.found) out.status = MpccStatus::kSolved;
-  out.seconds = elapsed();
+  out.seconds = run.elapsed();
   return out;
 }
 

@@ -307,6 +307,11 @@ bool check_solved_schema(const json& doc) {
   bool ok = has_number(doc, "T_f", "doc") && has_number(doc, "h", "doc");
   EXPECT_EQ(doc.value("status", ""), "solved");
   EXPECT_FALSE(doc.contains("status_detail")) << "status_detail is documented only when not solved";
+  const std::string stationarity = doc.value("stationarity", "");
+  EXPECT_TRUE(stationarity == "B-stationary" || stationarity == "strongly stationary" ||
+              stationarity == "feasible")
+      << "undocumented or missing stationarity '" << stationarity << "'";
+  ok = ok && !stationarity.empty();
   if (!ok) return false;
   const int N = doc["N_t"].get<int>();
   const double T = doc["T_f"].get<double>(), h = doc["h"].get<double>();
@@ -753,6 +758,7 @@ TEST(SolutionFile, SceneWithoutSolutionHasStatusAndNullTrajectories) {
   const json& doc = w.read;
   ASSERT_TRUE(check_common_schema(doc, *w.run.problem));
   EXPECT_EQ(doc["status"], "infeasible");
+  EXPECT_FALSE(doc.contains("stationarity")) << "stationarity is documented only when solved";
   ASSERT_TRUE(doc.contains("status_detail")) << "status_detail is documented when not solved";
   EXPECT_TRUE(doc["status_detail"].is_string());
   const std::string detail = doc["status_detail"].get<std::string>();
