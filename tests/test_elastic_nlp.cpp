@@ -66,7 +66,8 @@ struct SmallMpcc {
 
 class ElasticNlpTest : public ::testing::TestWithParam<ElasticFormulation> {
  protected:
-  bool lumped() const { return GetParam() == ElasticFormulation::kLumped; }
+  // kLumped and kRelaxed have the lumped row and eps (kRelaxed: the same NLP at sigma = 0).
+  bool lumped() const { return GetParam() != ElasticFormulation::kPerPair; }
   SmallMpcc mpcc_;
 };
 
@@ -239,13 +240,32 @@ TEST_P(ElasticNlpTest, PatternsKeepTheMpccEntriesFirstAndAreValid) {
   }
 }
 
+// set_relaxation moves only the lumped row's upper bound, sum u w - eps <= sigma; values and
+// derivatives do not change (the relaxation is a bound).
+TEST(ElasticNlpRelaxed, TheRelaxationIsTheLumpedRowsUpperBound) {
+  const SmallMpcc mpcc;
+  ElasticNlp e(mpcc.p, ElasticFormulation::kRelaxed, 10.0);
+  const int row = e.num_constraints() - 1;
+  const Vector lo = e.constraint_lower(), hi = e.constraint_upper();
+  EXPECT_EQ(hi[row], 0.0);
+  e.set_relaxation(0.25);
+  for (int r = 0; r < e.num_constraints(); ++r) {
+    EXPECT_EQ(e.constraint_lower()[r], lo[r]) << r;
+    EXPECT_EQ(e.constraint_upper()[r], r == row ? 0.25 : hi[r]) << r;
+  }
+  e.set_relaxation(0.0);
+  EXPECT_EQ(e.constraint_upper()[row], 0.0);
+}
+
 INSTANTIATE_TEST_SUITE_P(ElasticNlp, ElasticNlpTest,
                          ::testing::Values(ElasticFormulation::kLumped,
-                                           ElasticFormulation::kPerPair),
+                                           ElasticFormulation::kPerPair,
+                                           ElasticFormulation::kRelaxed),
                          [](const auto& info) {
-                           return std::string(info.param == ElasticFormulation::kLumped
-                                                  ? "Lumped"
-                                                  : "PerPair");
+                           return std::string(info.param == ElasticFormulation::kLumped ? "Lumped"
+                                              : info.param == ElasticFormulation::kPerPair
+                                                  ? "PerPair"
+                                                  : "Relaxed");
                          });
 
 }  // namespace

@@ -429,5 +429,33 @@ TEST(IpoptSolverSolve, AnIterationCapIsItsOwnOutcome) {
   EXPECT_GT(full.iterations, 3);
 }
 
+// A BarrierStage ends the solve on the barrier path at mu_target, and the next solve without
+// one runs the configured strategy to Ipopt's tol again. For min (x + 1)^2 / 2, x >= 0, the
+// barrier problem min (x + 1)^2 / 2 - mu ln x has its minimum where x + 1 = mu / x:
+// x = (sqrt(1 + 4 mu) - 1) / 2 (up to Ipopt's damping, below).
+TEST(IpoptSolverSolve, ABarrierStageStopsOnTheBarrierPathAtItsTarget) {
+  PolynomialProgram p;
+  p.add_variable(0.0, kInf, 1.0);
+  const Affine x1 = Affine::variable(0) + Affine(1.0);
+  p.add(PolynomialProgram::kObjective, 0.5, x1, x1);
+  p.finalize();
+  IpoptSolver solver(disco_yaml_ipopt_options());
+  NlpPoint start;
+  start.z = p.initial_point();
+  for (double target : {1e-1, 1e-2, 1e-4}) {
+    NlpLimits limits;
+    // Ipopt damps a one-sided bound (kappa_d = 1e-5): its dual infeasibility at the barrier
+    // point is kappa_d * mu, below this tolerance.
+    limits.barrier = BarrierStage{10 * target, target, 1e-3 * target};
+    const NlpResult staged = solver.solve(p, start, limits);
+    ASSERT_TRUE(staged.converged()) << ipopt_status_name(staged.ipopt_status);
+    const double x_mu = (std::sqrt(1 + 4 * target) - 1) / 2;
+    EXPECT_NEAR(staged.point.z[0], x_mu, 1e-2 * x_mu) << "mu_target " << target;
+  }
+  const NlpResult full = solver.solve(p, start);
+  ASSERT_TRUE(full.converged());
+  EXPECT_LT(full.point.z[0], 1e-8);
+}
+
 }  // namespace
 }  // namespace disco

@@ -318,6 +318,24 @@ TEST(ObjectiveReduction, ACappedEarlyMinimisationHandsBackToTheFixedSteps) {
 namespace disco {
 namespace {
 
+// Runs the reduction loop with `settings` on `problem` (a fresh Ipopt), prints and returns it.
+ReductionResult reduce_with(const Settings& settings, RobotProblem& problem, const char* name) {
+  IpoptSolver ipopt(ipopt_options(settings));
+  ElasticSolver solver(ipopt, elastic_settings(settings));
+  const ReductionResult result = reduce_objective(problem, solver, reduction_settings(settings));
+  std::printf("%s\n", name);
+  print(result);
+  return result;
+}
+
+// The loop found a best, and it is certified.
+void expect_certified_best(const ReductionResult& result, const char* name) {
+  ASSERT_TRUE(result.found) << name;
+  EXPECT_TRUE(result.best.solved()) << name;
+  EXPECT_LE(result.best.certificate.max_complementarity, 1e-6) << name;
+  EXPECT_LE(result.best.certificate.max_violation, 1e-6) << name;
+}
+
 // reduction.minimize=branch (search/objective_reduction.h): the loop minimises by branch
 // descents. On a two-robot scene the fixed steps pass the optimum and a descent follows
 // (a "minimize" segment, then a "branch" solve); the answer is certified, no worse than the
@@ -330,16 +348,9 @@ TEST(ObjectiveReduction, TheBranchMinimizerDescendsAndReachesTheOneRobotOptimum)
   const ReductionSettings schedule = reduction_settings(settings);
   ASSERT_EQ(schedule.minimizer, Minimizer::kBranch);
   for (const char* name : {"one_robot_axis", "two_robots_swap_avoid"}) {
-    const Scene scene = scenario(name, {"steps=20"});
-    RobotProblem problem(scene);
-    IpoptSolver ipopt(ipopt_options(settings));
-    ElasticSolver solver(ipopt, elastic_settings(settings));
-    const ReductionResult result = reduce_objective(problem, solver, schedule);
-    std::printf("%s\n", name);
-    print(result);
-    ASSERT_TRUE(result.found) << name;
-    EXPECT_TRUE(result.best.solved()) << name;
-    EXPECT_LE(result.best.certificate.max_complementarity, 1e-6) << name;
+    RobotProblem problem(scenario(name, {"steps=20"}));
+    const ReductionResult result = reduce_with(settings, problem, name);
+    ASSERT_NO_FATAL_FAILURE(expect_certified_best(result, name));
     double best_fixed = kInf;
     bool branch = false;
     for (const SolveRecord& r : result.solves) {
@@ -373,6 +384,48 @@ TEST(ObjectiveReduction, TheBranchMinimizerDescendsAndReachesTheOneRobotOptimum)
       EXPECT_TRUE(branch) << name << ": no branch descent";
     }
   }
+}
+
+// The relaxation homotopy (elastic.formulation relaxed) drives the loop to the same answers:
+// the one robot's closed-form optimum (its lower bound, within the discretisation error of
+// N_t = 20), every best certified, and the swap scene solved.
+TEST(ObjectiveReduction, TheRelaxedFormulationReachesTheOneRobotOptimum) {
+  Settings settings = Settings::load(default_settings_path());
+  settings.apply_override("elastic.formulation=relaxed");
+  ASSERT_EQ(elastic_settings(settings).formulation, ElasticFormulation::kRelaxed);
+  for (const char* name : {"one_robot_axis", "two_robots_swap_avoid"}) {
+    RobotProblem problem(scenario(name, {"steps=20"}));
+    const ReductionResult result = reduce_with(settings, problem, name);
+    ASSERT_NO_FATAL_FAILURE(expect_certified_best(result, name));
+    if (std::string(name) == "one_robot_axis") {
+      const double lb = problem.lower_bound().value();
+      EXPECT_GE(result.T_best, lb * (1 - 1e-9));
+      EXPECT_LE(result.T_best, lb * (1 + 1e-3));
+    }
+  }
+}
+
+// Each relaxed solve ends where the relaxation stops holding and polish fixes the branch:
+// without polish it would not end certified, so the settings refuse it, naming the key.
+TEST(ObjectiveReduction, RelaxedWithoutPolishIsAnErrorNamingTheKey) {
+  // The message elastic_settings gives for these overrides ("" if none).
+  auto error_for = [](std::initializer_list<const char*> overrides) -> std::string {
+    Settings settings = Settings::load(default_settings_path());
+    for (const char* o : overrides) settings.apply_override(o);
+    try {
+      elastic_settings(settings);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  const std::string polish = error_for({"elastic.formulation=relaxed", "elastic.polish=false"});
+  EXPECT_NE(polish.find("key 'elastic.polish'"), std::string::npos) << polish;
+  EXPECT_NE(polish.find("relaxed needs polish"), std::string::npos) << polish;
+  const std::string factor = error_for({"elastic.formulation=relaxed", "elastic.sigma_factor=1.5"});
+  EXPECT_NE(factor.find("key 'elastic.sigma_factor'"), std::string::npos) << factor;
+  EXPECT_NE(factor.find("must be below 1"), std::string::npos) << factor;
+  EXPECT_EQ(error_for({"elastic.formulation=relaxed"}), "");
 }
 
 TEST(ObjectiveReduction, AnUnknownMinimizerIsAnErrorNamingTheKey) {

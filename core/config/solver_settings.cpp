@@ -32,7 +32,8 @@ ElasticSettings elastic_settings(const Settings& s) {
   ElasticSettings e;
   e.formulation = choice<ElasticFormulation>(s, "elastic.formulation",
                                               {{"lumped", ElasticFormulation::kLumped},
-                                               {"per_pair", ElasticFormulation::kPerPair}});
+                                               {"per_pair", ElasticFormulation::kPerPair},
+                                               {"relaxed", ElasticFormulation::kRelaxed}});
   e.zeta = positive(s, "elastic.zeta");
   e.zeta_factor = positive(s, "elastic.zeta_factor");
   if (e.zeta_factor <= 1)
@@ -42,6 +43,16 @@ ElasticSettings elastic_settings(const Settings& s) {
   e.complementarity_tol = positive(s, "elastic.complementarity_tolerance");
   e.violation_tol = positive(s, "elastic.violation_tolerance");
   e.polish = s.boolean("elastic.polish");
+  e.sigma = positive(s, "elastic.sigma");
+  e.sigma_factor = positive(s, "elastic.sigma_factor");
+  if (e.sigma_factor >= 1)
+    throw InputError(s.where("elastic.sigma_factor") + ": key 'elastic.sigma_factor': must be below 1");
+  e.sigma_min = positive(s, "elastic.sigma_min");
+  e.barrier_ratio = positive(s, "elastic.barrier_ratio");
+  if (e.formulation == ElasticFormulation::kRelaxed && !e.polish)
+    throw InputError(s.where("elastic.polish") +
+                     ": key 'elastic.polish': formulation relaxed needs polish: its homotopy "
+                     "ends where the relaxation stops holding, and polish fixes the branch");
   return e;
 }
 

@@ -8,6 +8,11 @@
 
 namespace disco {
 
+void ElasticNlp::set_relaxation(double sigma) {
+  DISCO_CHECK(eps_ >= 0 && sigma >= 0, "a relaxation needs the lumped row and sigma >= 0");
+  set_constraint_bounds(m_, -kInf, sigma);
+}
+
 ElasticNlp::ElasticNlp(const Mpcc& mpcc, ElasticFormulation formulation, double zeta)
     : mpcc_(mpcc), formulation_(formulation), zeta_(zeta) {
   n_ = mpcc.num_variables();
@@ -34,8 +39,9 @@ ElasticNlp::ElasticNlp(const Mpcc& mpcc, ElasticFormulation formulation, double 
     u_.push_back(side_var(p.g));
     w_.push_back(side_var(p.h));
   }
-  if (formulation_ == ElasticFormulation::kLumped) eps_ = nvar++;
-  const int nrow = m_ + (formulation_ == ElasticFormulation::kLumped ? 1 : 0);
+  const bool lumped_row = formulation_ != ElasticFormulation::kPerPair;
+  if (lumped_row) eps_ = nvar++;
+  const int nrow = m_ + (lumped_row ? 1 : 0);
 
   z_lo_.resize(nvar);
   z_hi_.resize(nvar);

@@ -16,9 +16,15 @@
 //      zeta * sum_i eps_i, with each eps_i eliminated: since u_i, w_i >= 0 the
 //      optimal eps_i is exactly u_i w_i, so the two have the same solutions
 //      and this form needs no extra variables or rows.
+//    * kRelaxed:             sum_i u_i w_i <= sigma + eps,  eps >= 0,
+//                            objective f(z) + zeta * eps:
+//      the lumped form with its row relaxed by sigma >= 0 (set_relaxation; 0 is kLumped).
+//      A relaxed (Scholtes-type) problem with sigma > 0 has an interior near the
+//      complementarity corner; ElasticSolver drives sigma to 0 together with Ipopt's
+//      barrier parameter (elastic_solver.h).
 //
-// Variables: [z (n) | s (one per row side) | eps (kLumped only)].
-// Rows:      [c(z), side rows minus their slack (m) | the lumped row (kLumped)].
+// Variables: [z (n) | s (one per row side) | eps (kLumped, kRelaxed)].
+// Rows:      [c(z), side rows minus their slack (m) | the lumped row (kLumped, kRelaxed)].
 // The MPCC's Jacobian and Hessian entries come first, in the MPCC's order, so
 // its values are written in place into the head of each array.
 #pragma once
@@ -29,13 +35,15 @@
 
 namespace disco {
 
-enum class ElasticFormulation { kLumped, kPerPair };
+enum class ElasticFormulation { kLumped, kPerPair, kRelaxed };
 
 class ElasticNlp : public Nlp {
  public:
   ElasticNlp(const Mpcc& mpcc, ElasticFormulation formulation, double zeta);
 
   void set_zeta(double zeta) { zeta_ = zeta; }
+  // The lumped row's upper bound sigma (kLumped, kRelaxed; 0 when made).
+  void set_relaxation(double sigma);
   double zeta() const { return zeta_; }
   ElasticFormulation formulation() const { return formulation_; }
   const Mpcc& mpcc() const { return mpcc_; }

@@ -12,6 +12,16 @@
 //      only a residual that does not move at all signals that raising cannot
 //      help: that is what an active bound T_f <= B below the MPCC's optimum
 //      gives, since eps is then already minimal over {T_f <= B};
+//   With formulation kRelaxed, steps 1-2 are instead a homotopy that follows Ipopt's barrier
+//   (after Leyffer, Lopez-Calva & Nocedal's relaxation; nosnoc's homotopy): the relaxed NLP
+//   (elastic_nlp.h) at sigma = sigma_0, sigma_0 * sigma_factor, ... down to sigma_min, each
+//   solve warm-started from the last and ended at Ipopt's barrier level
+//   mu = barrier_ratio * sigma (a BarrierStage; to tolerance max(tol, sigma)), so that every
+//   solve is a short, regular one and none crawls at the complementarity corner. The
+//   homotopy ends when complementarity is tight, or where the relaxation stops holding
+//   (eps > sigma: the penalty prefers to violate it, as below the MPCC's optimal horizon).
+//   Only while it has not held at the first sigma is zeta raised (as in step 2: same stall
+//   rule, same zeta_max). Polish (step 3) then fixes the branch; the certificate decides.
 //   3. polish (optional, on by default): the branch NLP in which, for every
 //      pair, the smaller side at the elastic solution is fixed to zero, solved
 //      warm-started. Complementarity then holds exactly up to the constraint
@@ -21,6 +31,7 @@
 // tolerances.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -46,6 +57,11 @@ struct ElasticSettings {
   double complementarity_tol = 1e-6;
   double violation_tol = 1e-6;
   bool polish = true;
+  // kRelaxed only: the relaxation homotopy.
+  double sigma = 0.1;           // first relaxation
+  double sigma_factor = 0.1;    // next = sigma * factor
+  double sigma_min = 1e-8;      // the last relaxation solved
+  double barrier_ratio = 0.01;  // each relaxed solve ends at mu = ratio * sigma
 };
 
 // One call's own limits, as data: the solver keeps no per-call state.
@@ -112,6 +128,15 @@ class ElasticSolver {
  private:
   MpccResult run(const Mpcc& mpcc, NlpPoint start, double zeta,
                  const ElasticRequest& request) const;
+  // Steps 1-2 of run(): the penalty loop (kLumped, kPerPair) or the relaxation homotopy
+  // (kRelaxed). Both fill `out` (status, last solve's point and figures); `record` logs a
+  // solve into it. They return whether the last NLP solve converged.
+  using Record = std::function<void(const NlpResult&, const char*, double zeta)>;
+  bool penalty_loop(ElasticNlp& nlp, NlpPoint start, double zeta, const ElasticRequest& request,
+                    MpccResult& out, const Record& record) const;
+  bool relaxation_homotopy(ElasticNlp& nlp, NlpPoint start, double zeta,
+                           const ElasticRequest& request, MpccResult& out,
+                           const Record& record) const;
   IpoptSolver& ipopt_;
   ElasticSettings settings_;
 };

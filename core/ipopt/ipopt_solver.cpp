@@ -3,6 +3,7 @@
 #include <IpIpoptApplication.hpp>
 #include <IpTNLP.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -229,6 +230,10 @@ IpoptSolver::IpoptSolver(const std::vector<IpoptOption>& options)
   std::string warm;
   list->GetStringValue("warm_start_init_point", warm, "");
   warm_start_ = warm == "yes";
+  list->GetStringValue("mu_strategy", mu_strategy_, "");
+  list->GetNumericValue("mu_init", mu_init_, "");
+  list->GetNumericValue("mu_target", mu_target_, "");
+  list->GetNumericValue("tol", tol_, "");
 }
 
 IpoptSolver::~IpoptSolver() = default;
@@ -244,6 +249,12 @@ NlpResult IpoptSolver::solve(const Nlp& nlp, const NlpPoint& start, const NlpLim
   auto& app = app_->app;
   app->Options()->SetStringValue("warm_start_init_point",
                                  warm_start_ && start.has_duals() ? "yes" : "no");
+  const BarrierStage configured{mu_init_, mu_target_, tol_};
+  const BarrierStage& stage = limits.barrier ? *limits.barrier : configured;
+  app->Options()->SetStringValue("mu_strategy", limits.barrier ? "monotone" : mu_strategy_);
+  app->Options()->SetNumericValue("mu_init", stage.mu_init > 0 ? stage.mu_init : mu_init_);
+  app->Options()->SetNumericValue("mu_target", stage.mu_target);
+  app->Options()->SetNumericValue("tol", std::max(stage.tol, tol_));
   auto* adapter = new TnlpAdapter(nlp, start, out, limits);
   Ipopt::SmartPtr<Ipopt::TNLP> tnlp = adapter;
   out.ipopt_status = static_cast<int>(app->OptimizeTNLP(tnlp));

@@ -40,10 +40,21 @@ struct NlpPoint {
 
 using Deadline = std::chrono::steady_clock::time_point;
 
-// What one solve may spend.
+// One stage of a barrier path: Ipopt's barrier parameter mu starts at mu_init and falls
+// monotonically (mu_strategy monotone) to mu_target, where the solve ends once the barrier
+// problem's optimality error is below max(tol, the configured tol). Used by a homotopy that
+// moves its relaxation with the barrier (core/elastic/elastic_solver.h, formulation relaxed).
+struct BarrierStage {
+  double mu_init = 0.0;  // 0: the configured mu_init
+  double mu_target = 0.0;
+  double tol = 0.0;
+};
+
+// What one solve may spend, and where it stops.
 struct NlpLimits {
   int iterations = 0;               // stop after this many iterations (0: Ipopt's max_iter only)
   std::optional<Deadline> deadline;  // stop at the first iteration past it (none: no limit)
+  std::optional<BarrierStage> barrier;  // none: the configured mu strategy, to Ipopt's tol
 };
 
 // How an NLP solve ended, in disco's terms.
@@ -92,6 +103,9 @@ class IpoptSolver {
   struct Application;  // holds Ipopt's reference-counted application
   std::unique_ptr<Application> app_;
   bool warm_start_ = false;  // the configured warm_start_init_point (Ipopt's default: no)
+  // The configured barrier options, restored after a solve with a BarrierStage.
+  std::string mu_strategy_;
+  double mu_init_ = 0.0, mu_target_ = 0.0, tol_ = 0.0;
 };
 
 }  // namespace disco
