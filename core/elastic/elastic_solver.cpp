@@ -52,6 +52,10 @@ NlpLimits limits(const ElasticRequest& request) {
 bool past(const ElasticRequest& request) {
   return request.deadline && std::chrono::steady_clock::now() >= *request.deadline;
 }
+// The status of a solve that did not converge.
+MpccStatus unconverged_status(const NlpResult& r) {
+  return r.outcome == NlpOutcome::kInfeasible ? MpccStatus::kInfeasible : MpccStatus::kFailed;
+}
 }  // namespace
 
 MpccResult ElasticSolver::solve(const Mpcc& mpcc, const ConstVectorRef& z0,
@@ -155,6 +159,15 @@ MpccResult ElasticSolver::solve_branch(const Mpcc& mpcc, const MpccResult& from,
   return out;
 }
 
+bool ElasticSolver::raise_zeta(double residual, double& previous_residual, double& zeta) const {
+  const bool stalled = previous_residual >= 0 && std::abs(residual - previous_residual) <=
+                                                     settings_.stall_change * previous_residual;
+  previous_residual = residual;
+  if (stalled || zeta * settings_.zeta_factor > settings_.zeta_max) return false;
+  zeta *= settings_.zeta_factor;
+  return true;
+}
+
 bool ElasticSolver::penalty_loop(ElasticNlp& nlp, NlpPoint start, double zeta,
                                  const ElasticRequest& request, MpccResult& out,
                                  const Record& record) const {
@@ -163,12 +176,8 @@ bool ElasticSolver::penalty_loop(ElasticNlp& nlp, NlpPoint start, double zeta,
     nlp.set_zeta(zeta);
     const NlpResult r = ipopt_.solve(nlp, start, limits(request));
     record(r, "elastic", zeta);
-    if (r.outcome == NlpOutcome::kInfeasible) {
-      out.status = MpccStatus::kInfeasible;
-      return false;
-    }
     if (!r.converged()) {
-      out.status = MpccStatus::kFailed;
+      out.status = unconverged_status(r);
       return false;
     }
     if (out.certificate.max_complementarity <= settings_.complementarity_tol) {
@@ -179,15 +188,10 @@ bool ElasticSolver::penalty_loop(ElasticNlp& nlp, NlpPoint start, double zeta,
                        : MpccStatus::kFailed;
       return true;
     }
-    const bool stalled =
-        previous_residual >= 0 && std::abs(out.certificate.max_complementarity - previous_residual) <=
-                                      settings_.stall_change * previous_residual;
-    previous_residual = out.certificate.max_complementarity;
-    if (stalled || zeta * settings_.zeta_factor > settings_.zeta_max) {
+    if (!raise_zeta(out.certificate.max_complementarity, previous_residual, zeta)) {
       out.status = MpccStatus::kElasticNotTight;
       return true;
     }
-    zeta *= settings_.zeta_factor;
     start = r.point;
   }
 }
@@ -220,12 +224,8 @@ bool ElasticSolver::relaxation_homotopy(ElasticNlp& nlp, NlpPoint start, double 
     record(r, "relaxed", zeta);
     spdlog::debug("        sigma {:.1e}, eps {:.1e}", sigma, r.point.z[eps]);
     first = false;
-    if (r.outcome == NlpOutcome::kInfeasible) {
-      out.status = MpccStatus::kInfeasible;
-      return finish(false);
-    }
     if (!r.converged()) {
-      out.status = MpccStatus::kFailed;
+      out.status = unconverged_status(r);
       return finish(false);
     }
     start = r.point;
@@ -236,14 +236,8 @@ bool ElasticSolver::relaxation_homotopy(ElasticNlp& nlp, NlpPoint start, double 
       // (raising zeta at every sigma was measured: paper B2 start 0 took 4,417 iterations
       // instead of 1,672). If it never held, zeta is too weak for any relaxation: raise it
       // as the penalty loop does (same stall rule, same zeta_max).
-      if (held) return finish(true);
-      const double residual = out.certificate.max_complementarity;
-      const bool stalled = previous_residual >= 0 &&
-                           std::abs(residual - previous_residual) <=
-                               settings_.stall_change * previous_residual;
-      previous_residual = residual;
-      if (stalled || zeta * settings_.zeta_factor > settings_.zeta_max) return finish(true);
-      zeta *= settings_.zeta_factor;
+      if (held || !raise_zeta(out.certificate.max_complementarity, previous_residual, zeta))
+        return finish(true);
       continue;
     }
     held = true;

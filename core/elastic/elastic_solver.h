@@ -132,6 +132,9 @@ class ElasticSolver {
   // (kRelaxed). Both fill `out` (status, last solve's point and figures); `record` logs a
   // solve into it. They return whether the last NLP solve converged.
   using Record = std::function<void(const NlpResult&, const char*, double zeta)>;
+  // The zeta rule of step 2: raises zeta by zeta_factor and returns true, unless the residual
+  // stalled against previous_residual (updated; < 0: none yet) or zeta_max would be passed.
+  bool raise_zeta(double residual, double& previous_residual, double& zeta) const;
   bool penalty_loop(ElasticNlp& nlp, NlpPoint start, double zeta, const ElasticRequest& request,
                     MpccResult& out, const Record& record) const;
   bool relaxation_homotopy(ElasticNlp& nlp, NlpPoint start, double zeta,
