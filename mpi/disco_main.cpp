@@ -36,6 +36,7 @@
 #include "core/config/solver_settings.h"
 #include "core/model/scene_yaml.h"
 #include "core/util/errors.h"
+#include "core/util/provenance.h"
 #include "mpi/coordinator.h"
 #include "mpi/live_line.h"
 #include "search/solve_scene.h"
@@ -192,6 +193,7 @@ int main(int argc, char** argv) {
 
   CLI::App app{"disco: minimum-time control of disk robots with friction (elastic-mode MPCC)"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", disco_version(), "Print disco's version and git commit, and exit");
   SolveOptions solve;
   Verbosity solve_verbosity, search_verbosity;
   auto* cmd = app.add_subcommand("solve", "Solve one scene from one start (objective reduction)");

@@ -236,6 +236,23 @@ std::vector<Settings::Entry> Settings::section(const std::string& key) const {
 
 const std::string& Settings::source() const { return impl_->source; }
 
+std::string Settings::canonical_text() const {
+  // Block style throughout, whatever style the file used ({a: 1} and "a:\n  1" are equal).
+  YAML::Node copy = YAML::Clone(impl_->root);
+  auto block = [](auto& self, YAML::Node node) -> void {
+    node.SetStyle(YAML::EmitterStyle::Block);
+    if (node.IsMap()) {
+      for (auto entry : node) self(self, entry.second);
+    } else if (node.IsSequence()) {
+      for (auto item : node) self(self, item);
+    }
+  };
+  block(block, copy);
+  YAML::Emitter out;
+  out << copy;
+  return std::string(out.c_str()) + "\n";
+}
+
 std::string Settings::where(const std::string& key) const {
   if (impl_->overridden.count(key) != 0) return kOverrideSource;
   const YAML::Node n = impl_->find(key);

@@ -63,6 +63,11 @@ class Settings {
   // The file (or `source` given to parse()).
   const std::string& source() const;
 
+  // The settings in effect (the file's values after every override) as YAML text, without
+  // comments: equal texts mean equal settings. Its SHA-256 is the settings hash of run
+  // manifests and solution files.
+  std::string canonical_text() const;
+
   // Where `key` was defined, for messages made by other code: "FILE:LINE", or "--set" when
   // an override set it. For a key that does not exist, just "FILE".
   std::string where(const std::string& key) const;
