@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <csignal>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -25,7 +26,9 @@
 #include "core/model/lower_bound.h"
 #include "core/model/solution.h"
 #include "core/util/errors.h"
+#include "core/util/interrupt.h"
 #include "search/run_start.h"
+#include "search/run_manifest.h"
 #include "search/search_plan.h"
 
 namespace disco {
@@ -41,7 +44,32 @@ constexpr int kTagStop = 3;  // rank 0 -> worker: no more tasks
 struct Task {
   int scene = 0, start = 0;
   double budget = 0.0;  // s; 0 = none
+  BudgetSource source = BudgetSource::kNone;  // the limit that set the budget
 };
+
+// Whether a recorded outcome is final, so that --resume skips its start. A start cut short
+// runs again, unless its own start_time_limit cut it and that limit is unchanged (running it
+// again would only be cut again).
+bool is_final(const StartOutcome& o, const SceneJob& job) {
+  if (o.status == StartStatus::kInterrupted) return false;
+  if (o.status == StartStatus::kTimeLimit)
+    return o.budget_source == BudgetSource::kStart && o.budget == job.start_time_limit;
+  return true;
+}
+
+// "solved T_f 2.294182", "time limit (search, 20 s): T_f 2.380710 so far",
+// "interrupted: no point yet", "infeasible".
+std::string outcome_words(const StartOutcome& o) {
+  const std::string so_far =
+      o.certified() ? fmt::format("T_f {:.6f} so far", o.T_f) : std::string("no point yet");
+  switch (o.status) {
+    case StartStatus::kSolved: return fmt::format("solved T_f {:.6f}", o.T_f);
+    case StartStatus::kTimeLimit:
+      return fmt::format("time limit ({}, {:.0f} s): {}", to_string(o.budget_source), o.budget, so_far);
+    case StartStatus::kInterrupted: return "interrupted: " + so_far;
+    default: return to_string(o.status);
+  }
+}
 
 void send_string(const std::string& s, int dest, int tag) {
   MPI_Send(s.data(), static_cast<int>(s.size()), MPI_CHAR, dest, tag, MPI_COMM_WORLD);
@@ -68,14 +96,12 @@ std::string clock_text(double s) {
 // Thread-safe: the coordinator thread and rank 0's own worker share it.
 class Search {
  public:
-  Search(const SearchPlan& plan, const SearchOptions& options)
+  // The output directory is prepared (run_manifest.h); `resumed`: it holds an earlier run.
+  Search(const SearchPlan& plan, const SearchOptions& options, bool resumed)
       : plan_(plan), options_(options), t0_(Clock::now()), best_(plan.scenes.size()) {
-    std::error_code ec;
-    std::filesystem::create_directories(std::filesystem::path(options.out) / "best", ec);
-    if (ec) throw InputError("--out " + options.out + ": cannot create the directory (" + ec.message() + ")");
     const std::string runs = options.out + "/runs.jsonl";
     std::set<std::pair<int, int>> done;
-    if (options.resume) done = read_done(runs);
+    if (resumed) done = read_done(runs);
     // Larger scenes first (longest-processing-time order: fewer idle ranks at
     // the end); the order changes no result, only when each start runs.
     std::vector<int> order(plan.scenes.size());
@@ -88,7 +114,7 @@ class Search {
         if (!done.count({s, k})) pending_.push_back({s, k, 0.0});
     total_ = plan.total_starts();
     finished_ = total_ - static_cast<int>(pending_.size());
-    runs_ = std::fopen(runs.c_str(), options.resume ? "a" : "w");
+    runs_ = std::fopen(runs.c_str(), resumed ? "a" : "w");
     if (runs_ == nullptr) throw InputError(runs + ": cannot open for writing");
     write_best();
   }
@@ -104,6 +130,7 @@ class Search {
   std::optional<Task> next(int rank) {
     std::lock_guard<std::mutex> lock(mutex_);
     const double elapsed = seconds();
+    if (interrupt_requested()) return std::nullopt;
     if (options_.time_limit > 0 && elapsed >= options_.time_limit) {
       if (next_ < pending_.size()) time_limited_ = true;
       return std::nullopt;
@@ -118,17 +145,23 @@ class Search {
         b.time_limited = true;
         continue;
       }
-      double budget = job.start_time_limit;
-      auto cap = [&](double left) { budget = budget > 0 ? std::min(budget, left) : left; };
-      if (job.time_limit > 0) cap(scene_left);
-      if (options_.time_limit > 0) cap(options_.time_limit - elapsed);
-      t.budget = budget;
+      t.budget = job.start_time_limit;
+      t.source = job.start_time_limit > 0 ? BudgetSource::kStart : BudgetSource::kNone;
+      auto cap = [&](double left, BudgetSource source) {
+        if (t.budget > 0 && t.budget <= left) return;
+        t.budget = left;
+        t.source = source;
+      };
+      if (job.time_limit > 0) cap(scene_left, BudgetSource::kScene);
+      if (options_.time_limit > 0) cap(options_.time_limit - elapsed, BudgetSource::kSearch);
       running_[{t.scene, t.start}] = {rank, elapsed};
       return t;
     }
     return std::nullopt;
   }
 
+  // Records a start's outcome: a line in runs.jsonl (also for a start cut short, with its
+  // best so far), the scene's best (and its solution file), best.json, the progress line.
   void record(StartOutcome o, const json* solution) {
     std::lock_guard<std::mutex> lock(mutex_);
     o.finished_s = seconds();
@@ -136,17 +169,33 @@ class Search {
     std::fputs(line.c_str(), runs_);
     std::fflush(runs_);
     ::fsync(fileno(runs_));  // a kill (or a crash) loses no finished start
-    ++finished_;
     const int s = scene_index(o.scene);
     if (s >= 0) running_.erase({s, o.start});
-    const bool improved = update(s, o);
-    if (improved && solution != nullptr)
+    if (s >= 0 && is_final(o, plan_.scenes[s])) {
+      ++finished_;
+    } else {
+      ++cut_short_;
+    }
+    if (o.status == StartStatus::kInterrupted) ++interrupted_;
+    const bool best = update(s, o);
+    if (best && solution != nullptr)
       write_json_file(options_.out + "/best/" + o.scene + ".json", *solution);
     write_best();
-    spdlog::info("[{}/{}] {} start {} (rank {}): {}{} in {:.1f} s | best {} | {}", finished_,
-                 total_, o.scene, o.start, o.rank, o.status,
-                 o.solved() ? fmt::format(" T_f {:.6f}", o.T_f) : std::string(), o.seconds,
+    spdlog::info("[{}/{}] {} start {} (rank {}): {} in {:.1f} s | best {} | {}", finished_,
+                 total_, o.scene, o.start, o.rank, outcome_words(o), o.seconds,
                  best_summary(s), clock_locked());
+  }
+
+  // After an interrupt: what was kept and what was lost, for the last message.
+  struct Kept {
+    int kept = 0;   // starts with a final outcome in runs.jsonl (this run and earlier ones)
+    int lost = 0;   // starts cut short by the interrupt (their best so far is recorded)
+    int total = 0;  // starts of the plan
+    int cut = 0;    // this run's starts cut short (time limit or interrupt)
+  };
+  Kept kept() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return {finished_, interrupted_, total_, cut_short_};
   }
 
   // The live status line, most important first (a terminal cuts the end):
@@ -210,7 +259,8 @@ class Search {
     int start = -1;
     double T_f = 0.0;
     StartOutcome outcome;
-    int run = 0, solved = 0;
+    int run = 0, solved = 0;  // starts with an outcome; with a certified point
+    int cut_short = 0;        // of those, cut short (not final: --resume runs them again)
     double first_feasible_s = -1.0, best_s = -1.0;
     double started_s = -1.0;    // search time its first start was handed out
     double last_s = -1.0;       // search time its last start was recorded
@@ -252,32 +302,49 @@ class Search {
     return -1;
   }
 
-  // Counts the start and returns whether it became the scene's best.
+  // Keeps `o` as its start's outcome (it replaces an earlier one: a start cut short and run
+  // again), recounts the scene, and returns whether `o` is now the scene's best.
   bool update(int s, const StartOutcome& o) {
     if (s < 0) return false;
     Best& b = best_[s];
-    ++b.run;
     b.last_s = seconds();
-    if (!o.solved()) return false;
-    ++b.solved;
+    outcomes_[{s, o.start}] = o;
+    b.run = b.solved = b.cut_short = 0;
+    const StartOutcome* least = nullptr;
+    for (auto it = outcomes_.lower_bound({s, 0}); it != outcomes_.end() && it->first.first == s; ++it) {
+      const StartOutcome& x = it->second;
+      ++b.run;
+      if (!is_final(x, plan_.scenes[s])) ++b.cut_short;
+      if (!x.certified()) continue;
+      ++b.solved;
+      if (least == nullptr || x.T_f < least->T_f) least = &x;  // ties: the lower start (map order)
+    }
     // Scene times count from the hand-out of the scene's first start, to the
     // moment a rank found the point: the start was handed out o.seconds ago
     // and found it its own time_to_first_feasible / time_to_best after that.
     const double handed = seconds() - o.seconds - std::max(0.0, b.started_s);
-    const double feasible = handed + std::max(0.0, o.time_to_first_feasible);
-    if (b.first_feasible_s < 0 || feasible < b.first_feasible_s)
-      b.first_feasible_s = std::max(0.0, feasible);
-    const bool better = b.start < 0 || o.T_f < b.T_f || (o.T_f == b.T_f && o.start < b.start);
-    if (!better) return false;
-    b.start = o.start;
-    b.T_f = o.T_f;
-    b.outcome = o;
+    if (o.certified()) {
+      const double feasible = handed + std::max(0.0, o.time_to_first_feasible);
+      if (b.first_feasible_s < 0 || feasible < b.first_feasible_s)
+        b.first_feasible_s = std::max(0.0, feasible);
+    }
+    if (least == nullptr) return false;
+    if (least->start != o.start && b.start == o.start)  // o replaced the best with a worse point
+      spdlog::warn("{}: start {} ended above its earlier best, so start {} is now the best, but "
+                   "best/{}.json still holds start {}'s earlier point", o.scene, o.start,
+                   least->start, o.scene, o.start);
+    b.start = least->start;
+    b.T_f = least->T_f;
+    b.outcome = *least;
+    if (least->start != o.start || !o.certified()) return false;
     b.best_s = std::max(0.0, handed + std::max(0.0, o.time_to_best));
     return true;
   }
 
+  // The starts runs.jsonl holds a final outcome for (--resume skips them). A start's later
+  // line replaces its earlier ones; a start cut short keeps its best so far in the scene's
+  // best until it runs again.
   std::set<std::pair<int, int>> read_done(const std::string& path) {
-    std::set<std::pair<int, int>> done;
     std::ifstream in(path);
     std::string line;
     int bad = 0;
@@ -287,17 +354,26 @@ class Search {
         const StartOutcome o = StartOutcome::from_json(json::parse(line));
         const int s = scene_index(o.scene);
         if (s < 0 || o.start >= plan_.scenes[s].starts || o.seed != options_.seed) continue;
-        if (!done.insert({s, o.start}).second) continue;
         update(s, o);
-        // Times of an earlier run are not comparable with this one's clock.
-        best_[s].first_feasible_s = best_[s].best_s = best_[s].start >= 0 ? 0.0 : -1.0;
       } catch (const std::exception&) {
         ++bad;  // e.g. a line cut short by a kill
       }
     }
+    std::set<std::pair<int, int>> done;
+    int again = 0;
+    for (const auto& [key, o] : outcomes_) {
+      if (is_final(o, plan_.scenes[key.first])) {
+        done.insert(key);
+      } else {
+        ++again;
+      }
+    }
+    // Times of an earlier run are not comparable with this one's clock.
+    for (auto& b : best_) b.first_feasible_s = b.best_s = b.start >= 0 ? 0.0 : -1.0;
     if (bad > 0) spdlog::warn("{}: skipped {} unreadable line(s)", path, bad);
     resumed_ = static_cast<int>(done.size());
-    if (resumed_ > 0) spdlog::info("resume: {} start(s) already in {}", resumed_, path);
+    spdlog::info("resume: {} start(s) already in {}{}", resumed_, path,
+                 again > 0 ? fmt::format("; {} cut short there run again", again) : "");
     return done;
   }
 
@@ -308,6 +384,7 @@ class Search {
       json j = {{"starts", plan_.scenes[s].starts},
                 {"starts_run", b.run},
                 {"starts_solved", b.solved},
+                {"starts_cut_short", b.cut_short},
                 {"time_to_first_feasible_s", b.first_feasible_s >= 0 ? json(b.first_feasible_s) : json(nullptr)},
                 {"time_to_best_s", b.best_s >= 0 ? json(b.best_s) : json(nullptr)},
                 {"started_s", b.started_s >= 0 ? json(b.started_s) : json(nullptr)},
@@ -334,6 +411,7 @@ class Search {
                       {"elapsed_s", seconds()},
                       {"starts_total", total_},
                       {"starts_finished", finished_},
+                      {"interrupted", interrupt_requested()},
                       {"time_limit_s", options_.time_limit},
                       {"time_limit_reached", time_limited_},
                       {"scenes", scenes}};
@@ -346,7 +424,12 @@ class Search {
   std::mutex mutex_;
   std::vector<Task> pending_;
   std::size_t next_ = 0;
-  int total_ = 0, finished_ = 0, resumed_ = 0;
+  int total_ = 0;
+  int finished_ = 0;    // starts with a final outcome (is_final), this run's and earlier ones
+  int resumed_ = 0;     // of those, read from an earlier run's runs.jsonl
+  int cut_short_ = 0;   // this run's outcomes that are not final
+  int interrupted_ = 0; // of those, cut short by an interrupt
+  std::map<std::pair<int, int>, StartOutcome> outcomes_;  // (scene, start): its latest outcome
   bool time_limited_ = false;
   struct Running {
     int rank = 0;
@@ -377,13 +460,17 @@ StartOutcome run_task(const Context& c, const Task& t, json* solution) {
       spdlog::debug("  {} start {}: {}", scene.name, t.start, solve_log_line(++count, r));
     };
   }
-  StartOutcome o = run_start(scene, c.settings, spec, t.budget, solution, on_solve);
+  StartOutcome o = run_start(scene, c.settings, spec, t.budget, t.source, solution, on_solve);
   o.rank = c.rank;
   return o;
 }
 
 Task task_from_json(const json& j) {
-  return {j.at("scene").get<int>(), j.at("start").get<int>(), j.at("budget").get<double>()};
+  return {j.at("scene").get<int>(), j.at("start").get<int>(), j.at("budget").get<double>(),
+          budget_source_from_string(j.at("source").get<std::string>())};
+}
+json task_json(const Task& t) {
+  return {{"scene", t.scene}, {"start", t.start}, {"budget", t.budget}, {"source", to_string(t.source)}};
 }
 
 void worker_loop(const Context& c) {
@@ -396,7 +483,7 @@ void worker_loop(const Context& c) {
     json solution;
     const StartOutcome o = run_task(c, task_from_json(json::parse(msg)), &solution);
     json reply = {{"outcome", o.to_json()}};
-    if (o.solved()) reply["solution"] = solution;
+    if (o.certified()) reply["solution"] = solution;
     send_string(reply.dump(), 0, kTagWork);
   }
 }
@@ -420,8 +507,7 @@ void coordinator_loop(Search& search, int workers) {
       search.record(o, msg.contains("solution") ? &msg["solution"] : nullptr);
     }
     if (const auto t = search.next(st.MPI_SOURCE)) {
-      send_string(json{{"scene", t->scene}, {"start", t->start}, {"budget", t->budget}}.dump(),
-                  st.MPI_SOURCE, kTagTask);
+      send_string(task_json(*t).dump(), st.MPI_SOURCE, kTagTask);
     } else {
       send_string("", st.MPI_SOURCE, kTagStop);
       --active;
@@ -454,7 +540,13 @@ int run_search(const SearchOptions& o) {
   spdlog::info("search: {} scene(s), {} start(s), seed {}, {} rank(s){}", c.plan.scenes.size(),
                c.plan.total_starts(), o.seed, size,
                o.time_limit > 0 ? fmt::format(", time limit {:.0f} s", o.time_limit) : "");
-  Search search(c.plan, o);
+  const json manifest = search_manifest(
+      c.plan, c.settings, {o.configs, o.sets, o.seed, o.starts, o.time_limit, o.resume});
+  const int earlier = prepare_out_dir(
+      o.out, o.resume ? OutDirMode::kResume : o.force ? OutDirMode::kForce : OutDirMode::kFresh,
+      manifest);
+  if (o.resume && earlier == 0) spdlog::info("resume: {} holds no run yet; starting afresh", o.out);
+  Search search(c.plan, o, earlier > 0);
   std::thread coordinator;
   if (size > 1) coordinator = std::thread([&] { coordinator_loop(search, size - 1); });
   // The live line: refreshed every second by a thread that only reads the
@@ -474,7 +566,7 @@ int run_search(const SearchOptions& o) {
   while (const auto t = search.next(0)) {  // rank 0 works too
     json solution;
     const StartOutcome out = run_task(c, *t, &solution);
-    search.record(out, out.solved() ? &solution : nullptr);
+    search.record(out, out.certified() ? &solution : nullptr);
   }
   if (coordinator.joinable()) coordinator.join();
   if (ticker.joinable()) {
@@ -486,6 +578,18 @@ int run_search(const SearchOptions& o) {
     ticker.join();
   }
   search.finish();
+  if (interrupt_requested()) {
+    const auto k = search.kept();
+    const int signal = interrupt_signal();
+    spdlog::warn("interrupted{}: {} of {} starts kept in {}/runs.jsonl, {} lost (cut short; "
+                 "their best so far is in best.json); continue with --resume",
+                 signal == SIGINT ? " (SIGINT)" : signal == SIGTERM ? " (SIGTERM)" : "", k.kept,
+                 k.total, o.out, k.lost);
+    return 128 + (signal > 0 ? signal : SIGINT);
+  }
+  if (const auto k = search.kept(); k.cut > 0)
+    spdlog::info("time limit: {} start(s) cut short (recorded with their best so far); --resume "
+                 "runs them again", k.cut);
   spdlog::info("wrote {}/runs.jsonl, {}/best.json; an HTML report: scripts/report {}", o.out,
                o.out, o.out);
   return search.all_solved() ? 0 : 3;

@@ -2,9 +2,13 @@
 //
 //   disco solve SCENE.yaml [--out DIR] [--start N [--seed S]] [--threads N] [--settings FILE]
 //               [--set KEY=VALUE ...] [--model-only] [--quiet | --verbose]
-//   disco search CONFIG... [--starts N] [--seed S] [--time-limit SEC] [--out DIR] [--resume]
-//                [--threads N] [--settings FILE] [--set KEY=VALUE ...]   (mpi/coordinator.h)
-//                [--quiet | --verbose]
+//   disco search CONFIG... [--starts N] [--seed S] [--time-limit SEC] [--out DIR]
+//                [--resume | --force] [--threads N] [--settings FILE] [--set KEY=VALUE ...]
+//                [--quiet | --verbose]                                   (mpi/coordinator.h)
+//   disco --version
+//
+// Options and the file arguments may come in any order; each --set takes one KEY=VALUE
+// (repeat it for more).
 //
 // Logs go to stderr and results to files; nothing is written to stdout except
 // --help. On a terminal, `search` keeps a live status line below its log
@@ -17,15 +21,19 @@
 // core/model/solution.h and README.md). The file is written whatever the
 // outcome, with the status telling what happened.
 //
-// Exit status: 0 a certified solution was written; 3 the run ended without one
-// (status infeasible, failed or elastic_not_tight, still written); 2 bad input
-// or usage (the message names the file, line and key).
+// Exit status (also in --help, kExitCodes): 0 a certified solution was written (search:
+// for every scene); 3 the run ended without one (status infeasible, failed or
+// elastic_not_tight, still written); 2 bad input or usage (the message names the file,
+// line and key); 1 an internal error; 130 / 143 interrupted by SIGINT / SIGTERM (what
+// finished is written; see mpi/coordinator.h). A second signal ends disco at once.
 #include <mpi.h>
 #include <omp.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <csignal>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -36,7 +44,10 @@
 #include "core/config/solver_settings.h"
 #include "core/model/scene_yaml.h"
 #include "core/util/errors.h"
+#include "core/util/interrupt.h"
 #include "core/util/provenance.h"
+#include "core/util/suggest.h"
+#include "core/ipopt/ipopt_solver.h"
 #include "mpi/coordinator.h"
 #include "mpi/live_line.h"
 #include "search/solve_scene.h"
@@ -45,6 +56,38 @@
 namespace {
 
 using namespace disco;
+
+constexpr const char* kExitCodes =
+    "Exit status: 0 certified solution(s) written (search: for every scene); 3 finished "
+    "without a certified solution (for some scene); 2 bad input or usage; 1 internal error; "
+    "130 / 143 interrupted by SIGINT / SIGTERM (finished work kept; search: continue with "
+    "--resume).";
+
+// SIGINT and SIGTERM request a clean stop (core/util/interrupt.h); SA_RESETHAND makes a
+// second signal end the process at once.
+void on_signal(int signal) { request_interrupt(signal); }
+void install_signal_handlers() {
+  struct sigaction action {};
+  action.sa_handler = on_signal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESETHAND;
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+int interrupted_exit_code() { return 128 + (interrupt_signal() > 0 ? interrupt_signal() : SIGINT); }
+
+// The first word must be a command: name an unknown one, with the closest command.
+// Returns the usage error to print, or "" when the command line starts well.
+std::string unknown_command(int argc, char** argv, const CLI::App& app) {
+  if (argc < 2 || argv[1][0] == '-') return "";
+  std::vector<std::string> names;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+    names.push_back(sub->get_name());
+  const std::string word = argv[1];
+  if (std::find(names.begin(), names.end(), word) != names.end()) return "";
+  return "unknown command '" + printable(word, kEchoLimit) + "'" + did_you_mean(word, names) +
+         "; the commands are solve and search (disco --help)";
+}
 
 // One thread unless asked: evaluation is a small share of a solve, and
 // parallelism across starts comes from MPI ranks (ranks x threads <= cores).
@@ -93,6 +136,7 @@ int run_search_command(SearchOptions o, int threads, const Verbosity& verbosity,
     if (rank == 0 && !verbosity.quiet && is_terminal(stderr))
       o.on_status = [sink](const std::string& text) { sink->set_status(text); };
     set_threads(threads);
+    install_signal_handlers();
     try {
       code = run_search(o);
     } catch (const InputError& e) {
@@ -104,7 +148,8 @@ int run_search_command(SearchOptions o, int threads, const Verbosity& verbosity,
     }
     // An error on one rank must not leave the others waiting for messages
     // (e.g. rank 0 cannot write --out while the workers wait for tasks).
-    if (code != 0 && code != 3 && size > 1) MPI_Abort(MPI_COMM_WORLD, code);
+    const bool interrupted = code == interrupted_exit_code() && interrupt_requested();
+    if (code != 0 && code != 3 && !interrupted && size > 1) MPI_Abort(MPI_COMM_WORLD, code);
   }
   MPI_Finalize();
   return code;
@@ -151,6 +196,9 @@ int run_solve(const SolveOptions& o) {
       spdlog::info("lower bound: none (every robot can be pushed, or has no closed form)");
     }
   }
+  // Every option is checked before anything runs, --model-only too.
+  elastic_settings(settings);
+  IpoptSolver check(ipopt_options(settings));
   if (o.model_only) return 0;
   std::filesystem::create_directories(out_dir);
   const StartSpec start =
@@ -164,9 +212,16 @@ int run_solve(const SolveOptions& o) {
   int count = 0;
   auto on_solve = [&](const SolveRecord& r) { spdlog::info("{}", solve_log_line(++count, r)); };
 
+  install_signal_handlers();
   const SceneSolve run = solve_scene(scene, settings, start, 0.0, on_solve);
   const std::string path = out_dir + "/solution.json";
   write_json_file(path, solution_json(*run.problem, run.z, run.info));
+  if (interrupt_requested()) {
+    spdlog::warn("interrupted: the solve stopped early; {} holds its best point so far{}", path,
+                 run.solved() ? fmt::format(" (T_f = {:.6f} s, certified)", run.T_f())
+                              : std::string(" (none: status ") + run.info.status + ")");
+    return interrupted_exit_code();
+  }
   const auto lb = run.problem->lower_bound();
   if (run.solved()) {
     spdlog::info("solved: T_f = {:.6f} s{}; certificate: violation {:.1e}, complementarity {:.1e}",
@@ -193,12 +248,13 @@ int main(int argc, char** argv) {
 
   CLI::App app{"disco: minimum-time control of disk robots with friction (elastic-mode MPCC)"};
   app.require_subcommand(1);
+  app.footer(kExitCodes);
   app.set_version_flag("--version", disco_version(), "Print disco's version and git commit, and exit");
   SolveOptions solve;
   Verbosity solve_verbosity, search_verbosity;
   auto* cmd = app.add_subcommand("solve", "Solve one scene from one start (objective reduction)");
   cmd->add_option("scene", solve.scene, "Scene file (YAML)")->required();
-  cmd->add_option("--out", solve.out, "Output directory (default: out/SCENARIO)");
+  cmd->add_option("--out", solve.out, "Output directory")->default_str("out/SCENARIO");
   cmd->add_option("--start", solve.start,
                   "Run this start of a search (search/start.h) instead of start 0, e.g. to see the "
                   "log of the start that gave a search's best")
@@ -212,7 +268,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   cmd->add_option("--set", solve.sets,
                   "Override KEY=VALUE: a settings key (elastic.zeta_max=1e8, ipopt.tol=1e-10) "
-                  "or a scene key prefixed with 'scene.' (scene.steps=50)");
+                  "or a scene key prefixed with 'scene.' (scene.steps=50); repeat for more")
+      ->expected(1)
+      ->allow_extra_args(false)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   solve_verbosity.add_flags(cmd);
   SearchOptions search;
   search.settings = default_settings_path();
@@ -221,17 +280,31 @@ int main(int argc, char** argv) {
       "search", "Multi-start search over MPI ranks (run under mpirun, or as one process)");
   scmd->add_option("configs", search.configs, "Scene or benchmark files (YAML)")->required();
   scmd->add_option("--starts", search.starts, "Starts per scene (replaces the files' counts)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::PositiveNumber)
+      ->default_str("the benchmark file's, 1 for a scene file");
   scmd->add_option("--seed", search.seed, "Seed of the start generator")->capture_default_str();
   scmd->add_option("--time-limit", search.time_limit, "Seconds for the whole search (0: none)")
       ->check(CLI::NonNegativeNumber);
   scmd->add_option("--out", search.out, "Output directory")->capture_default_str();
-  scmd->add_flag("--resume", search.resume, "Skip the starts already in OUT/runs.jsonl");
+  auto* resume = scmd->add_flag(
+      "--resume", search.resume,
+      "Continue the run in OUT: skip the starts OUT/runs.jsonl holds, run again those cut short "
+      "(refused if OUT/manifest.json differs from this command)");
+  scmd->add_flag("--force", search.force,
+                 "Replace the run OUT holds (without --resume, a non-empty OUT is refused)")
+      ->excludes(resume);
   scmd->add_option("--threads", search_threads, "OpenMP threads per rank (default 1)")
       ->check(CLI::PositiveNumber);
   scmd->add_option("--settings", search.settings, "Solver settings file")->capture_default_str();
-  scmd->add_option("--set", search.sets, "Override KEY=VALUE (as for solve)");
+  scmd->add_option("--set", search.sets, "Override KEY=VALUE (as for solve); repeat for more")
+      ->expected(1)
+      ->allow_extra_args(false)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   search_verbosity.add_flags(scmd);
+  if (const std::string error = unknown_command(argc, argv, app); !error.empty()) {
+    spdlog::error("error: {}", error);
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

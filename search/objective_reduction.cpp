@@ -8,6 +8,7 @@
 
 #include <spdlog/fmt/fmt.h>
 
+#include "core/util/interrupt.h"
 #include "core/config/solver_settings.h"
 #include "core/util/check.h"
 #include "core/util/errors.h"
@@ -46,7 +47,10 @@ struct Reduction {
   double elapsed() const {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
-  bool out_of_time() const { return cfg.time_limit > 0 && elapsed() > cfg.time_limit; }
+  // An interrupt (core/util/interrupt.h) ends the loop as the time limit does.
+  bool out_of_time() const {
+    return interrupt_requested() || (cfg.time_limit > 0 && elapsed() > cfg.time_limit);
+  }
   ElasticRequest request(int iteration_limit) const {
     ElasticRequest r{iteration_limit, std::nullopt};
     if (cfg.time_limit > 0)  // every solve ends by the time limit

@@ -3,8 +3,11 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <stdexcept>
+#include <utility>
 
 #include "core/model/solution.h"
+#include "core/util/interrupt.h"
 #include "search/solve_scene.h"
 
 namespace disco {
@@ -17,14 +20,57 @@ double number_or_nan(const json& j) {
   return j.is_number() ? j.get<double>() : std::numeric_limits<double>::quiet_NaN();
 }
 
+constexpr std::pair<StartStatus, const char*> kStatusNames[] = {
+    {StartStatus::kSolved, "solved"},         {StartStatus::kInfeasible, "infeasible"},
+    {StartStatus::kFailed, "failed"},         {StartStatus::kElasticNotTight, "elastic_not_tight"},
+    {StartStatus::kError, "error"},           {StartStatus::kTimeLimit, "time_limit"},
+    {StartStatus::kInterrupted, "interrupted"}};
+constexpr std::pair<BudgetSource, const char*> kSourceNames[] = {{BudgetSource::kNone, "none"},
+                                                                 {BudgetSource::kStart, "start"},
+                                                                 {BudgetSource::kScene, "scene"},
+                                                                 {BudgetSource::kSearch, "search"}};
+
+template <class E, std::size_t N>
+std::string name_of(const std::pair<E, const char*> (&names)[N], E value) {
+  for (const auto& [v, name] : names)
+    if (v == value) return name;
+  return "?";
+}
+template <class E, std::size_t N>
+E value_of(const std::pair<E, const char*> (&names)[N], const std::string& text, const char* what) {
+  for (const auto& [v, name] : names)
+    if (text == name) return v;
+  throw std::invalid_argument(std::string("unknown ") + what + " '" + text + "'");
+}
+
+StartStatus status_of(MpccStatus s) {
+  switch (s) {
+    case MpccStatus::kSolved: return StartStatus::kSolved;
+    case MpccStatus::kInfeasible: return StartStatus::kInfeasible;
+    case MpccStatus::kElasticNotTight: return StartStatus::kElasticNotTight;
+    case MpccStatus::kFailed: return StartStatus::kFailed;
+  }
+  return StartStatus::kFailed;
+}
+
 }  // namespace
+
+std::string to_string(StartStatus s) { return name_of(kStatusNames, s); }
+StartStatus start_status_from_string(const std::string& text) {
+  return value_of(kStatusNames, text, "start status");
+}
+std::string to_string(BudgetSource s) { return name_of(kSourceNames, s); }
+BudgetSource budget_source_from_string(const std::string& text) {
+  return value_of(kSourceNames, text, "budget source");
+}
 
 json StartOutcome::to_json() const {
   return {{"scene", scene},
           {"start", start},
           {"seed", seed},
-          {"status", status},
+          {"status", to_string(status)},
           {"detail", detail},
+          {"budget", {{"seconds", budget}, {"set_by", to_string(budget_source)}}},
           {"T_f", number_or_null(T_f)},
           {"certificate",
            {{"max_violation", number_or_null(max_violation)},
@@ -47,8 +93,12 @@ StartOutcome StartOutcome::from_json(const json& j) {
   o.scene = j.at("scene").get<std::string>();
   o.start = j.at("start").get<int>();
   o.seed = j.at("seed").get<std::uint64_t>();
-  o.status = j.at("status").get<std::string>();
+  o.status = start_status_from_string(j.at("status").get<std::string>());
   o.detail = j.value("detail", "");
+  if (j.contains("budget")) {
+    o.budget = j["budget"].at("seconds").get<double>();
+    o.budget_source = budget_source_from_string(j["budget"].at("set_by").get<std::string>());
+  }
   o.T_f = number_or_nan(j.at("T_f"));
   o.max_violation = number_or_nan(j.at("certificate").at("max_violation"));
   o.max_complementarity = number_or_nan(j.at("certificate").at("max_complementarity"));
@@ -67,7 +117,8 @@ StartOutcome StartOutcome::from_json(const json& j) {
 }
 
 StartOutcome run_start(const Scene& scene, const Settings& settings, const StartSpec& start,
-                       double time_budget_s, json* solution, const SolveCallback& on_solve) {
+                       double time_budget_s, BudgetSource budget_source, json* solution,
+                       const SolveCallback& on_solve) {
   const auto t0 = std::chrono::steady_clock::now();
   StartOutcome out;
   out.scene = scene.name;
@@ -76,10 +127,12 @@ StartOutcome run_start(const Scene& scene, const Settings& settings, const Start
   out.description = start.describe();
   out.guess = to_string(start.guess);
   out.schedule = start.schedule_json();
+  out.budget = time_budget_s;
+  out.budget_source = time_budget_s > 0 ? budget_source : BudgetSource::kNone;
   try {
     SceneSolve run = solve_scene(scene, settings, start, time_budget_s, on_solve);
     const ReductionResult& r = run.result;
-    out.status = run.info.status;
+    out.status = status_of(r.status);
     out.nlp_solves = r.nlp_solves;
     out.iterations = r.iterations;
     out.time_to_first_feasible = r.time_to_first_feasible;
@@ -90,8 +143,11 @@ StartOutcome run_start(const Scene& scene, const Settings& settings, const Start
     } else {
       out.detail = r.feasibility_detail;
     }
-    if (time_budget_s > 0 && r.seconds >= time_budget_s) {
-      out.detail += std::string(out.detail.empty() ? "" : "; ") + "time budget reached";
+    // Cut short: the reduction ended on the clock, not by its own rules.
+    if (interrupt_requested()) {
+      out.status = StartStatus::kInterrupted;
+    } else if (time_budget_s > 0 && r.seconds >= time_budget_s) {
+      out.status = StartStatus::kTimeLimit;
     }
     if (!r.found) run.info.detail = out.detail;
     out.max_violation = run.info.certificate.max_violation;
@@ -100,10 +156,10 @@ StartOutcome run_start(const Scene& scene, const Settings& settings, const Start
     run.info.wall_s = out.seconds;
     if (solution != nullptr) *solution = solution_json(*run.problem, run.z, run.info);
   } catch (const std::exception& e) {
-    out.status = "error";
+    out.status = StartStatus::kError;
     out.detail = e.what();
   } catch (...) {
-    out.status = "error";
+    out.status = StartStatus::kError;
     out.detail = "unknown exception";
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -3,10 +3,14 @@
 // run_start() never throws: an exception inside the start (bad data, an
 // internal error) becomes status "error" with the message, so a worker never
 // takes the search down. The time budget caps the whole start (objective
-// reduction) and every elastic solve inside it.
+// reduction) and every elastic solve inside it; a start it cuts short is
+// status time_limit, one an interrupt cuts short (core/util/interrupt.h) is
+// status interrupted. Both keep their best point so far (T_f, certificate),
+// and `disco search --resume` runs them again (mpi/coordinator.h).
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -20,13 +24,36 @@
 
 namespace disco {
 
+// How a start ended. In runs.jsonl: "solved", "infeasible", "failed", "elastic_not_tight",
+// "error", "time_limit", "interrupted".
+enum class StartStatus {
+  kSolved,           // ran to its end with a certified point
+  kInfeasible,       // ran to its end; no feasible point (MpccStatus::kInfeasible)
+  kFailed,           // ran to its end; the solver failed (MpccStatus::kFailed)
+  kElasticNotTight,  // ran to its end; complementarity not tight (MpccStatus::kElasticNotTight)
+  kError,            // an exception; `detail` has its message
+  kTimeLimit,        // cut short by its time budget; T_f is its best so far (NaN: none)
+  kInterrupted,      // cut short by SIGINT or SIGTERM; T_f is its best so far (NaN: none)
+};
+std::string to_string(StartStatus s);
+// The status named by `text` (as to_string gives it); std::invalid_argument otherwise.
+StartStatus start_status_from_string(const std::string& text);
+
+// Which time limit set a start's budget (the smallest of them): the start's own
+// (start_time_limit), its scene's (time_limit, from the scene's first start) or the
+// search's (--time-limit). In runs.jsonl: "none", "start", "scene", "search".
+enum class BudgetSource { kNone, kStart, kScene, kSearch };
+std::string to_string(BudgetSource s);
+BudgetSource budget_source_from_string(const std::string& text);
+
 struct StartOutcome {
   std::string scene;
   int start = 0;
   std::uint64_t seed = 0;
-  std::string status;  // solved | infeasible | failed | error
-  std::string detail;  // error message; last feasibility status when not solved;
-                       // "time budget reached" when the budget cut the start short
+  StartStatus status = StartStatus::kError;
+  std::string detail;  // error message; last feasibility status when not solved
+  double budget = 0.0;  // s: the time budget the start had (0: none)
+  BudgetSource budget_source = BudgetSource::kNone;
   double T_f = std::numeric_limits<double>::quiet_NaN();  // s, NaN if none
   double max_violation = std::numeric_limits<double>::quiet_NaN();
   double max_complementarity = std::numeric_limits<double>::quiet_NaN();
@@ -40,17 +67,24 @@ struct StartOutcome {
   std::vector<std::array<double, 2>> history;
   int rank = 0;
   double finished_s = -1.0;  // search time when rank 0 recorded it (set by the coordinator)
-  bool solved() const { return status == "solved"; }
+  bool solved() const { return status == StartStatus::kSolved; }
+  // A certified point exists (solved, or cut short after finding one).
+  bool certified() const { return std::isfinite(T_f); }
+  // Cut short (time limit or interrupt): the start did not run to its end.
+  bool cut_short() const {
+    return status == StartStatus::kTimeLimit || status == StartStatus::kInterrupted;
+  }
 
   nlohmann::json to_json() const;  // one runs.jsonl line (NaN -> null)
   static StartOutcome from_json(const nlohmann::json& j);
 };
 
-// Runs `start` on `scene`; `solution` (if not null) receives the solution
+// Runs `start` on `scene` with a time budget (s; 0 = none) set by `budget_source`; `solution` (if not null) receives the solution
 // file of the best point (schema: core/model/solution.h); `on_solve` (if set)
 // is called after every elastic-mode solve.
 StartOutcome run_start(const Scene& scene, const Settings& settings, const StartSpec& start,
-                       double time_budget_s, nlohmann::json* solution = nullptr,
+                       double time_budget_s, BudgetSource budget_source,
+                       nlohmann::json* solution = nullptr,
                        const SolveCallback& on_solve = {});
 
 }  // namespace disco

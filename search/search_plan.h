@@ -28,7 +28,8 @@
 namespace disco {
 
 struct SceneJob {
-  Scene scene;
+  Scene scene;                     // scene.source is its file
+  std::vector<std::string> overrides;  // scene overrides applied: the entry's `set`, then --set
   int starts = 1;
   double time_limit = 0.0;        // s for all the scene's starts, from its first; 0 = none
   double start_time_limit = 0.0;  // s per start; 0 = none

@@ -10,8 +10,21 @@ MODE:
   resume       a 2-rank search killed after its first finished start, then --resume:
                every start exactly once in runs.jsonl, the same best as a clean run.
   timelimit    --time-limit 3 on one rank: hands out no start after 3 s, ends soon after
-               (starts in flight get only the time left), says so in best.json, and
-               keeps the best of what finished.
+               (starts in flight get only the time left, and are recorded as time_limit
+               with their best so far, the progress line saying so), says so in best.json;
+               then --resume without the limit ends with the runs and best of a clean run.
+  manifest     OUT/manifest.json: a non-empty OUT is refused without --resume (nothing
+               touched) and replaced with --force; --resume refuses a different seed, scene
+               set, scene override or setting, naming each difference; a matching --resume
+               with more starts runs only the new ones and appends its invocation.
+  interrupt    SIGINT to one process and to mpirun (2 ranks) while starts run: exit 130 /
+               the ranks' SIGTERM, "interrupted (...): K of N starts kept ..., L lost ...;
+               continue with --resume", the starts in flight recorded as interrupted; then
+               --resume ends with the runs and best of a clean run.
+  killrandom   10 runs on 2 ranks, some with a time limit, each killed (SIGINT to mpirun, or
+               SIGKILL to everything) at a random moment, then resumed without the limit
+               (once more if the kill left nothing): each ends with exactly the runs and
+               best of a clean run.
   logging      logs go to stderr and results to files (stdout stays empty): the progress
                line by default, a live status line on a terminal only, nothing with --quiet, every start's solve log and every
                Ipopt solve with --verbose (each line naming its rank); the same for
@@ -20,6 +33,7 @@ MODE:
 import json
 import re
 import os
+import random
 import shutil
 import signal
 import subprocess
@@ -53,13 +67,37 @@ def best(out):
         return json.load(f)
 
 
+def kill_all(proc, out):
+    """SIGKILL to the whole run writing into `out`: mpirun's group and every rank (ranks may
+    outlive mpirun)."""
+    os.killpg(proc.pid, signal.SIGKILL)
+    proc.wait()
+    pattern = f"search .* --out {re.escape(out)}( |$)"
+    subprocess.run(["pkill", "-KILL", "-f", pattern])
+    while subprocess.run(["pgrep", "-f", pattern], stdout=subprocess.DEVNULL).returncode == 0:
+        time.sleep(0.05)
+
+
+CUT = ("time_limit", "interrupted")  # a start cut short: --resume runs it again
+
+
+def latest(rs):
+    """Each start's last line (a start cut short and run again has two)."""
+    last = {}
+    for r in rs:
+        last[(r["scene"], r["start"])] = r
+    return list(last.values())
+
+
 def check_consistent(out, label, timing=False):
     rs, b = runs(out), best(out)
-    pairs = [(r["scene"], r["start"]) for r in rs]
-    check(len(pairs) == len(set(pairs)), f"{label}: every start recorded once ({len(pairs)} lines)")
+    final = [(r["scene"], r["start"]) for r in rs if r["status"] not in CUT]
+    check(len(final) == len(set(final)), f"{label}: every start ended once ({len(final)} final lines)")
+    rs = latest(rs)
+    check(all(r["status"] not in CUT for r in rs), f"{label}: no start left cut short")
     check(b["starts_finished"] == b["starts_total"] == len(rs), f"{label}: best.json counts all starts")
     for scene, s in b["scenes"].items():
-        solved = [r for r in rs if r["scene"] == scene and r["status"] == "solved"]
+        solved = [r for r in rs if r["scene"] == scene and r["T_f"] is not None]
         if not solved:
             check(s["T_f"] is None, f"{label}: {scene} has no best")
             continue
@@ -107,13 +145,7 @@ elif MODE == "resume":
     deadline = time.time() + 120
     while time.time() < deadline and not (os.path.exists(path) and os.path.getsize(path) > 0):
         time.sleep(0.05)
-    # Kill the whole run: mpirun's group and every rank (ranks may outlive mpirun).
-    os.killpg(proc.pid, signal.SIGKILL)
-    proc.wait()
-    pattern = f"search {BENCH} --seed 7 --out {out}"
-    subprocess.run(["pkill", "-KILL", "-f", pattern])
-    while subprocess.run(["pgrep", "-f", pattern], stdout=subprocess.DEVNULL).returncode == 0:
-        time.sleep(0.05)
+    kill_all(proc, out)
     before = len(runs(out))
     check(0 < before < best(clean)["starts_total"], f"killed after {before} finished start(s)")
     resumed = subprocess.run(MPI + [DISCO, "search", BENCH, "--seed", "7", "--out", out, "--resume"],
@@ -123,20 +155,38 @@ elif MODE == "resume":
     check({k: v["T_f"] for k, v in best(out)["scenes"].items()} ==
           {k: v["T_f"] for k, v in best(clean)["scenes"].items()}, "resumed best equals the clean run's")
 elif MODE == "timelimit":
-    out = os.path.join(WORK, "timelimit")
+    clean, out = os.path.join(WORK, "clean"), os.path.join(WORK, "timelimit")
+    check(search(clean, 1) == 0, "clean 1-rank search exits 0")
+    shutil.rmtree(out, ignore_errors=True)
     t0 = time.time()
-    code = search(out, 1, "--time-limit", "3")
+    r = subprocess.run([DISCO, "search", BENCH, "--seed", "7", "--out", out, "--time-limit", "3"],
+                       env=ENV, capture_output=True, text=True)
     wall = time.time() - t0
     b = best(out)
-    check(code in (0, 3), f"time-limited search exits 0 or 3 (got {code})")
+    check(r.returncode in (0, 3), f"time-limited search exits 0 or 3 (got {r.returncode})")
     check(wall < 3 + 10, f"ends soon after the limit ({wall:.1f} s)")
     check(b["time_limit_reached"] is True, "best.json says the time limit was reached")
     check(0 < b["starts_finished"] < b["starts_total"], f"{b['starts_finished']} of {b['starts_total']} starts ran")
     rs = runs(out)
-    check(len(rs) == b["starts_finished"], "runs.jsonl holds every finished start")
+    cut = [x for x in rs if x["status"] == "time_limit"]
+    check(len(rs) == b["starts_finished"] + len(cut), "runs.jsonl holds every start that ended or was cut")
+    check(len(cut) >= 1 and all(x["budget"]["set_by"] == "search" and x["budget"]["seconds"] <= 3
+                                for x in cut),
+          f"the start in flight at the limit is recorded as time_limit, set by the search ({len(cut)})")
+    for x in cut:
+        words = f"{x['scene']} start {x['start']} (rank 0): time limit (search, "
+        check(words in r.stderr, f"its progress line says so ({words}...)")
     for scene, sb in b["scenes"].items():
-        solved = [r["T_f"] for r in rs if r["scene"] == scene and r["status"] == "solved"]
-        check(sb["T_f"] == (min(solved) if solved else None), f"{scene}: best of what finished")
+        points = [x["T_f"] for x in rs if x["scene"] == scene and x["T_f"] is not None]
+        check(sb["T_f"] == (min(points) if points else None), f"{scene}: best of what ran, cut starts too")
+    check("--resume runs them again" in r.stderr, "the last lines say how to finish the cut starts")
+    code = subprocess.run([DISCO, "search", BENCH, "--seed", "7", "--out", out, "--resume"], env=ENV).returncode
+    check(code == 0, "--resume without the limit exits 0")
+    check_consistent(out, "resumed")
+    check(key_set(latest(runs(out))) == key_set(runs(clean)), "resumed: the runs of the clean run, bit for bit")
+    check({k: (v["T_f"], v.get("start")) for k, v in best(out)["scenes"].items()} ==
+          {k: (v["T_f"], v.get("start")) for k, v in best(clean)["scenes"].items()},
+          "resumed: the best of the clean run")
 elif MODE == "logging":
     def run(cmd, out):
         shutil.rmtree(out, ignore_errors=True)
@@ -212,6 +262,133 @@ elif MODE == "logging":
           "solve --verbose: the Ipopt solves too")
     r = run(solve + ["--quiet", "--verbose"], sol)
     check(r.returncode == 2 and "excludes" in r.stderr, "--quiet with --verbose: exit 2")
+elif MODE == "manifest":
+    out = os.path.join(WORK, "manifest")
+    swap = os.path.join(os.path.dirname(BENCH), "../scenarios/two_robots_swap_avoid.yaml")
+    axis = os.path.join(os.path.dirname(BENCH), "../scenarios/one_robot_axis.yaml")
+
+    def run(*extra, scenes=(axis,)):
+        return subprocess.run([DISCO, "search", *scenes, "--seed", "7", "--out", out, *extra],
+                              env=ENV, capture_output=True, text=True)
+
+    shutil.rmtree(out, ignore_errors=True)
+    r = run("--starts", "2", "--set", "scene.steps=20")
+    check(r.returncode == 0, f"a search exits 0 ({r.stderr[-200:]!r})")
+    m = json.load(open(os.path.join(out, "manifest.json")))
+    sc = m["scenes"][0]
+    check(m["seed"] == 7 and sc["name"] == "one_robot_axis" and sc["overrides"] == ["steps=20"] and
+          len(sc["sha256"]) == 64 and m["settings"]["values"]["elastic.zeta"] is not None and
+          re.match(r"\d+\.\d+\.\d+ \(git ", m["version"]) and m["mode"] == "search",
+          "manifest.json: seed, scene, overrides, file hash, settings values, version, mode")
+    with open(os.path.join(out, "runs.jsonl")) as f:
+        before = f.read()
+
+    r = run("--starts", "2", "--set", "scene.steps=20")
+    check(r.returncode == 2 and "is not empty" in r.stderr and "--resume" in r.stderr and
+          "--force" in r.stderr, f"a non-empty --out is refused without --resume ({r.stderr[-300:]!r})")
+    check(open(os.path.join(out, "runs.jsonl")).read() == before, "the refused run touched nothing")
+
+    for extra, scenes, words in [
+            (["--set", "scene.steps=12"], (axis,), "scene 'one_robot_axis': overrides [steps=20] there, [steps=12] here"),
+            (["--set", "scene.steps=20", "--set", "elastic.zeta=20"], (axis,), "setting elastic.zeta: 10.0 there, 20 here"),
+            (["--set", "scene.steps=20", "--seed", "8"], (axis,), "seed: 7 there, 8 here"),
+            (["--set", "scene.steps=20"], (axis, swap), "scene 'two_robots_swap_avoid': in this run, not in the earlier one")]:
+        seed = [] if "--seed" in extra else ["--seed", "7"]
+        r = subprocess.run([DISCO, "search", *scenes, *seed, "--out", out, "--resume", *extra],
+                           env=ENV, capture_output=True, text=True)
+        check(r.returncode == 2 and "holds a different run" in r.stderr and words in r.stderr,
+              f"--resume refuses a mismatch naming it: {words} ({r.stderr[-300:]!r})")
+    check(open(os.path.join(out, "runs.jsonl")).read() == before, "the refused resumes touched nothing")
+
+    r = run("--starts", "3", "--set", "scene.steps=20", "--resume")
+    rs = runs(out)
+    check(r.returncode == 0 and [x["start"] for x in rs] == [0, 1, 2] and
+          "resume: 2 start(s) already in" in r.stderr,
+          f"a matching --resume with one more start runs only start 2 ({[x['start'] for x in rs]})")
+    inv = json.load(open(os.path.join(out, "manifest.json")))["invocations"]
+    check([i["resume"] for i in inv] == [False, True] and inv[1]["starts"] == 3,
+          "the manifest lists both invocations")
+
+    r = run("--starts", "1", "--set", "scene.steps=20", "--force", scenes=(swap,))
+    check(r.returncode == 0 and [x["scene"] for x in runs(out)] == ["two_robots_swap_avoid"] and
+          list(best(out)["scenes"]) == ["two_robots_swap_avoid"] and
+          not os.path.exists(os.path.join(out, "best", "one_robot_axis.json")),
+          "--force replaces the run: runs, best and best/ hold only the new one")
+    r = run("--resume", "--force")
+    check(r.returncode == 2 and "excludes" in r.stderr, "--resume with --force is a usage error")
+
+    os.remove(os.path.join(out, "manifest.json"))
+    r = run("--starts", "1", "--set", "scene.steps=20", "--resume", scenes=(swap,))
+    check(r.returncode == 2 and "manifest.json is missing" in r.stderr,
+          f"--resume refuses runs without a manifest ({r.stderr[-200:]!r})")
+elif MODE in ("interrupt", "killrandom"):
+    swap = os.path.join(os.path.dirname(BENCH), "../scenarios/two_robots_swap_avoid.yaml")
+    # interrupt: two starts of ~6 s each, so both ranks are inside one at the signal;
+    # killrandom: the smoke benchmark.
+    config = [swap, "--set", "scene.steps=30", "--starts", "2"] if MODE == "interrupt" else [BENCH]
+
+    def command(out, *extra):
+        return [DISCO, "search", *config, "--seed", "7", "--out", out, *extra]
+
+    def same_as_clean(out, clean, label):
+        check_consistent(out, label)
+        check(key_set(latest(runs(out))) == key_set(runs(clean)),
+              f"{label}: the runs of the clean run, bit for bit")
+        check({k: (v["T_f"], v.get("start")) for k, v in best(out)["scenes"].items()} ==
+              {k: (v["T_f"], v.get("start")) for k, v in best(clean)["scenes"].items()},
+              f"{label}: the best of the clean run")
+
+    clean = os.path.join(WORK, "clean")
+    shutil.rmtree(clean, ignore_errors=True)
+    check(subprocess.run(MPI + command(clean), env=ENV).returncode == 0, "clean 2-rank search exits 0")
+
+    if MODE == "interrupt":
+        for ranks in (1, 2):
+            out = os.path.join(WORK, f"interrupt{ranks}")
+            shutil.rmtree(out, ignore_errors=True)
+            proc = subprocess.Popen((MPI if ranks == 2 else []) + command(out), env=ENV,
+                                    stderr=subprocess.PIPE, text=True, start_new_session=True)
+            time.sleep(2.5)
+            proc.send_signal(signal.SIGINT)
+            _, err = proc.communicate(timeout=60)
+            name = "SIGINT" if ranks == 1 else "SIGTERM"  # mpirun passes Ctrl-C on as SIGTERM
+            match = re.search(r"interrupted \((SIG\w+)\): (\d+) of (\d+) starts kept in (\S+), (\d+) lost "
+                              r"\(cut short; their best so far is in best.json\); continue with --resume", err)
+            check(match is not None and match.group(1) == name and match.group(4) == out + "/runs.jsonl",
+                  f"{ranks} rank(s): says what it kept ({err[-300:]!r})")
+            if ranks == 1:
+                check(proc.returncode == 130, f"1 rank: exit 130 after SIGINT (got {proc.returncode})")
+            rs = runs(out)
+            lost = [x for x in rs if x["status"] == "interrupted"]
+            check(match is not None and int(match.group(5)) == len(lost) == ranks and
+                  int(match.group(2)) == len(rs) - len(lost),
+                  f"{ranks} rank(s): the starts in flight are recorded as interrupted ({len(lost)})")
+            check(best(out)["interrupted"] is True, f"{ranks} rank(s): best.json says interrupted")
+            code = subprocess.run((MPI if ranks == 2 else []) + command(out, "--resume"), env=ENV).returncode
+            check(code == 0, f"{ranks} rank(s): --resume exits 0")
+            same_as_clean(out, clean, f"{ranks} rank(s), resumed")
+    else:
+        rng = random.Random(20261124)
+        for k in range(10):
+            out = os.path.join(WORK, f"kill{k}")
+            shutil.rmtree(out, ignore_errors=True)
+            limit = ["--time-limit", str(rng.choice([1, 2, 3]))] if k % 3 == 1 else []
+            how = "SIGINT" if k % 2 == 0 else "SIGKILL"
+            at = rng.uniform(0.3, 4.0)
+            proc = subprocess.Popen(MPI + command(out, *limit), env=ENV, stderr=subprocess.DEVNULL,
+                                    start_new_session=True)
+            try:
+                proc.wait(timeout=at)
+            except subprocess.TimeoutExpired:
+                if how == "SIGINT":
+                    proc.send_signal(signal.SIGINT)
+                    proc.wait(timeout=60)
+                else:
+                    kill_all(proc, out)
+            label = f"run {k} ({how} at {at:.1f} s{', ' + ' '.join(limit) if limit else ''})"
+            r = subprocess.run(MPI + command(out, "--resume"), env=ENV, capture_output=True, text=True)
+            check(r.returncode == 0, f"{label}: --resume exits 0 ({r.stderr[-200:]!r})")
+            same_as_clean(out, clean, label)
 else:
     sys.exit(f"unknown mode {MODE}")
 

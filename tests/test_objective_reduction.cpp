@@ -128,8 +128,8 @@ TEST(ObjectiveReduction, StartZeroIsBitIdenticalToDiscoSolve) {
   ASSERT_TRUE(solve.solved());
   const StartSpec start =
       make_start(scene, 2024, 0, reduction_settings(settings), elastic_settings(settings));
-  const StartOutcome outcome = run_start(scene, settings, start, 0.0);
-  ASSERT_TRUE(outcome.solved()) << outcome.status << " " << outcome.detail;
+  const StartOutcome outcome = run_start(scene, settings, start, 0.0, BudgetSource::kNone);
+  ASSERT_TRUE(outcome.solved()) << to_string(outcome.status) << " " << outcome.detail;
   EXPECT_TRUE(same_bits(outcome.T_f, solve.T_f())) << outcome.T_f << " vs " << solve.T_f();
   EXPECT_EQ(outcome.iterations, solve.result.iterations);
   EXPECT_EQ(outcome.nlp_solves, solve.result.nlp_solves);

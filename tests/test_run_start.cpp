@@ -2,13 +2,18 @@
 // a recorded status (search/run_start.h).
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <csignal>
+#include <stdexcept>
+#include <thread>
 #include <cstdio>
 #include <string>
 
 #include "core/config/settings.h"
 #include "core/config/solver_settings.h"
 #include "core/model/scene_yaml.h"
+#include "core/util/interrupt.h"
 #include "search/run_start.h"
 
 namespace disco {
@@ -27,13 +32,13 @@ TEST(RunStart, AnExceptionInsideTheStartBecomesStatusError) {
   const StartSpec spec = make_start(scene, 1, 0, reduction_settings(settings),
                                     elastic_settings(settings));
   StartOutcome out;
-  EXPECT_NO_THROW(out = run_start(scene, settings, spec, 0.0));
-  EXPECT_EQ(out.status, "error");
+  EXPECT_NO_THROW(out = run_start(scene, settings, spec, 0.0, BudgetSource::kNone));
+  EXPECT_EQ(out.status, StartStatus::kError);
   EXPECT_NE(out.detail.find("no_such_option"), std::string::npos) << out.detail;
   EXPECT_TRUE(std::isnan(out.T_f));
   // The outcome survives the runs.jsonl round trip (NaN written as null).
   const StartOutcome back = StartOutcome::from_json(nlohmann::json::parse(out.to_json().dump()));
-  EXPECT_EQ(back.status, "error");
+  EXPECT_EQ(back.status, StartStatus::kError);
   EXPECT_TRUE(std::isnan(back.T_f));
 }
 
@@ -43,8 +48,8 @@ TEST(RunStart, ASolvedStartRecordsItsCertifiedResult) {
   const StartSpec spec = make_start(scene, 1, 0, reduction_settings(settings),
                                     elastic_settings(settings));
   nlohmann::json solution;
-  const StartOutcome out = run_start(scene, settings, spec, 0.0, &solution);
-  ASSERT_EQ(out.status, "solved");
+  const StartOutcome out = run_start(scene, settings, spec, 0.0, BudgetSource::kNone, &solution);
+  ASSERT_EQ(out.status, StartStatus::kSolved);
   EXPECT_LE(out.max_violation, 1e-6);
   EXPECT_LE(out.max_complementarity, 1e-6);
   EXPECT_EQ(solution["T_f"].get<double>(), out.T_f);
@@ -63,8 +68,8 @@ TEST(RunStart, ItsHistoryListsEveryNewBestOnTheStartsOwnClock) {
       {"steps=15"});
   const StartSpec spec = make_start(scene, 1, 2, reduction_settings(settings),
                                     elastic_settings(settings));
-  const StartOutcome out = run_start(scene, settings, spec, 0.0);
-  ASSERT_EQ(out.status, "solved");
+  const StartOutcome out = run_start(scene, settings, spec, 0.0, BudgetSource::kNone);
+  ASSERT_EQ(out.status, StartStatus::kSolved);
   ASSERT_GE(out.history.size(), 2u);
   // The first entry is the feasible point, the last the best; T_f falls
   // strictly and the clock does not go back.
@@ -91,32 +96,81 @@ TEST(RunStart, AStartWithoutASolutionHasAnEmptyHistory) {
   const Scene scene = load_scene(std::string(DISCO_SOURCE_DIR) + "/configs/stress/off_axis_target.yaml");
   const StartSpec spec = make_start(scene, 1, 0, reduction_settings(settings),
                                     elastic_settings(settings));
-  const StartOutcome out = run_start(scene, settings, spec, 0.0);
-  EXPECT_EQ(out.status, "infeasible");
+  const StartOutcome out = run_start(scene, settings, spec, 0.0, BudgetSource::kNone);
+  EXPECT_EQ(out.status, StartStatus::kInfeasible);
   EXPECT_TRUE(out.history.empty());
   EXPECT_EQ(out.to_json().at("history"), nlohmann::json::array());
 }
 
-TEST(RunStart, ATimeBudgetCapsTheWholeStart) {
+TEST(RunStart, ATimeBudgetCapsTheWholeStartAndItsOutcomeSaysSo) {
   // A start of three_robots_contact runs for tens of seconds unbounded. With a
   // budget, every elastic solve gets only the time left of the whole start, so
   // the start ends within the budget plus about one Ipopt iteration (a
-  // generous second here, for a loaded machine) and keeps its best point.
+  // generous second here, for a loaded machine), keeps its best point so far
+  // and is recorded as cut short by that budget, not as solved.
   const Settings settings = Settings::load(default_settings_path());
   const Scene scene =
       load_scene(std::string(DISCO_SOURCE_DIR) + "/configs/scenarios/three_robots_contact.yaml");
   const StartSpec spec = make_start(scene, 1, 0, reduction_settings(settings),
                                     elastic_settings(settings));
   for (double budget : {3.0, 7.0}) {
-    const StartOutcome out = run_start(scene, settings, spec, budget);
-    std::printf("budget %.0f s: %s T_f %.4f in %.2f s (%s)\n", budget, out.status.c_str(), out.T_f,
-                out.seconds, out.detail.c_str());
+    const StartOutcome out = run_start(scene, settings, spec, budget, BudgetSource::kSearch);
+    std::printf("budget %.0f s: %s T_f %.4f in %.2f s (%s)\n", budget, to_string(out.status).c_str(),
+                out.T_f, out.seconds, out.detail.c_str());
     EXPECT_LE(out.seconds, budget + 1.0) << out.detail;
-    EXPECT_NE(out.detail.find("time budget reached"), std::string::npos) << out.detail;
-    if (out.solved()) {
+    EXPECT_EQ(out.status, StartStatus::kTimeLimit);
+    EXPECT_TRUE(out.cut_short());
+    EXPECT_EQ(out.budget, budget);
+    EXPECT_EQ(out.budget_source, BudgetSource::kSearch);
+    if (out.certified()) {
+      EXPECT_LE(out.max_violation, 1e-6);
       EXPECT_LE(out.max_complementarity, 1e-6);
     }
+    const StartOutcome back = StartOutcome::from_json(nlohmann::json::parse(out.to_json().dump()));
+    EXPECT_EQ(back.status, StartStatus::kTimeLimit);
+    EXPECT_EQ(back.budget, budget);
+    EXPECT_EQ(back.budget_source, BudgetSource::kSearch);
+    EXPECT_EQ(out.to_json().at("status"), "time_limit");
   }
+}
+
+TEST(RunStart, AnInterruptStopsTheStartAtOnceAndItIsRecordedAsInterrupted) {
+  // The same long start, interrupted 1.5 s in (as SIGINT does through
+  // mpi/disco_main.cpp): it ends within about one Ipopt iteration of the request.
+  const Settings settings = Settings::load(default_settings_path());
+  const Scene scene =
+      load_scene(std::string(DISCO_SOURCE_DIR) + "/configs/scenarios/three_robots_contact.yaml");
+  const StartSpec spec = make_start(scene, 1, 0, reduction_settings(settings),
+                                    elastic_settings(settings));
+  clear_interrupt();
+  std::thread interrupter([] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    request_interrupt(SIGINT);
+  });
+  const StartOutcome out = run_start(scene, settings, spec, 0.0, BudgetSource::kNone);
+  interrupter.join();
+  EXPECT_TRUE(interrupt_requested());
+  EXPECT_EQ(interrupt_signal(), SIGINT);
+  clear_interrupt();
+  EXPECT_EQ(out.status, StartStatus::kInterrupted) << to_string(out.status) << " " << out.detail;
+  EXPECT_LE(out.seconds, 1.5 + 1.0);
+  EXPECT_EQ(StartOutcome::from_json(out.to_json()).status, StartStatus::kInterrupted);
+  // Afterwards solves run again: a short start ends solved.
+  const Scene small = small_scene();
+  const StartSpec s0 = make_start(small, 1, 0, reduction_settings(settings), elastic_settings(settings));
+  EXPECT_EQ(run_start(small, settings, s0, 0.0, BudgetSource::kNone).status, StartStatus::kSolved);
+}
+
+TEST(RunStart, StatusNamesRoundTripAndAnUnknownNameIsRefused) {
+  for (StartStatus s : {StartStatus::kSolved, StartStatus::kInfeasible, StartStatus::kFailed,
+                        StartStatus::kElasticNotTight, StartStatus::kError, StartStatus::kTimeLimit,
+                        StartStatus::kInterrupted})
+    EXPECT_EQ(start_status_from_string(to_string(s)), s);
+  for (BudgetSource b : {BudgetSource::kNone, BudgetSource::kStart, BudgetSource::kScene,
+                         BudgetSource::kSearch})
+    EXPECT_EQ(budget_source_from_string(to_string(b)), b);
+  EXPECT_THROW(start_status_from_string("finished"), std::invalid_argument);
+  EXPECT_THROW(budget_source_from_string("rank"), std::invalid_argument);
 }
 
 }  // namespace

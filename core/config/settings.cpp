@@ -3,6 +3,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <set>
@@ -10,6 +11,7 @@
 
 #include "core/config/yaml_nodes.h"
 #include "core/util/errors.h"
+#include "core/util/suggest.h"
 
 namespace disco {
 namespace {
@@ -147,6 +149,19 @@ Settings Settings::parse(const std::string& text, const std::string& source) {
   return s;
 }
 
+// "no such setting in FILE ...", with the settings keys close to `key`, or, for a key
+// outside every settings section, the hint that scene keys take the prefix "scene.".
+std::string Settings::no_such_setting(const std::string& key) const {
+  std::vector<std::string> keys;
+  for (const auto& [k, v] : values()) keys.push_back(k);
+  std::string hint = did_you_mean(key, keys);
+  const std::string first = key.substr(0, key.find('.'));
+  if (hint.empty() && !child_of(impl_->root, first).IsDefined())
+    hint = " (" + first + " is not a settings section; a scene key takes the prefix 'scene.': scene." +
+           key + ")";
+  return "no such setting in " + impl_->source + hint + "; only ipopt.* options may be new";
+}
+
 void Settings::apply_override(const std::string& assignment) {
   const yaml::Override o = yaml::parse_override(assignment, "elastic.zeta");
   const std::string& key = o.key;
@@ -169,18 +184,12 @@ void Settings::apply_override(const std::string& assignment) {
   YAML::Node parent = root;
   for (std::size_t k = 0; k + 1 < parts.size(); ++k) {
     const YAML::Node next = child_of(parent, parts[k]);
-    if (!next.IsDefined()) {
-      override_fail(key,
-                    "no such setting in " + impl_->source + " (only ipopt.* options may be new)");
-    }
+    if (!next.IsDefined()) override_fail(key, no_such_setting(key));
     parent.reset(next);
   }
   const std::string& last = parts.back();
   const YAML::Node existing = child_of(parent, last);
-  if (!existing.IsDefined() && !ipopt) {
-    override_fail(key,
-                  "no such setting in " + impl_->source + " (only ipopt.* options may be new)");
-  }
+  if (!existing.IsDefined() && !ipopt) override_fail(key, no_such_setting(key));
   if (existing.IsDefined() && (existing.IsMap() || existing.IsSequence())) {
     override_fail(key, "is a section, not a single setting");
   }
@@ -236,21 +245,28 @@ std::vector<Settings::Entry> Settings::section(const std::string& key) const {
 
 const std::string& Settings::source() const { return impl_->source; }
 
-std::string Settings::canonical_text() const {
-  // Block style throughout, whatever style the file used ({a: 1} and "a:\n  1" are equal).
-  YAML::Node copy = YAML::Clone(impl_->root);
-  auto block = [](auto& self, YAML::Node node) -> void {
-    node.SetStyle(YAML::EmitterStyle::Block);
+std::vector<std::pair<std::string, std::string>> Settings::values() const {
+  std::vector<std::pair<std::string, std::string>> out;
+  auto walk = [&](auto& self, const YAML::Node& node, const std::string& key) -> void {
     if (node.IsMap()) {
-      for (auto entry : node) self(self, entry.second);
+      for (const auto& kv : node)
+        self(self, kv.second, (key.empty() ? "" : key + ".") + kv.first.as<std::string>());
     } else if (node.IsSequence()) {
-      for (auto item : node) self(self, item);
+      for (std::size_t k = 0; k < node.size(); ++k)
+        self(self, node[k], key + "[" + std::to_string(k) + "]");
+    } else {
+      out.emplace_back(key, node.IsScalar() ? node.Scalar() : std::string("~"));
     }
   };
-  block(block, copy);
-  YAML::Emitter out;
-  out << copy;
-  return std::string(out.c_str()) + "\n";
+  walk(walk, impl_->root, "");
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::string Settings::canonical_text() const {
+  std::string text;
+  for (const auto& [key, value] : values()) text += key + ": " + value + "\n";
+  return text;
 }
 
 std::string Settings::where(const std::string& key) const {

@@ -17,6 +17,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace disco {
@@ -63,9 +64,12 @@ class Settings {
   // The file (or `source` given to parse()).
   const std::string& source() const;
 
-  // The settings in effect (the file's values after every override) as YAML text, without
-  // comments: equal texts mean equal settings. Its SHA-256 is the settings hash of run
-  // manifests and solution files.
+  // The settings in effect (the file's values after every override): every scalar as
+  // (dotted key, text as written), sorted by key; null values read "~".
+  std::vector<std::pair<std::string, std::string>> values() const;
+  // values() as "KEY: VALUE" lines: equal texts mean equal settings, whatever the file's
+  // layout, order and comments. Its SHA-256 is the settings hash of run manifests and
+  // solution files.
   std::string canonical_text() const;
 
   // Where `key` was defined, for messages made by other code: "FILE:LINE", or "--set" when
@@ -73,6 +77,7 @@ class Settings {
   std::string where(const std::string& key) const;
 
  private:
+  std::string no_such_setting(const std::string& key) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "core/util/interrupt.h"
 #include "core/util/check.h"
 #include "core/util/errors.h"
 
@@ -105,7 +106,7 @@ class TnlpAdapter : public Ipopt::TNLP {
       stopped_ = NlpOutcome::kIterationCap;
       return false;
     }
-    if (limits_.deadline && Clock::now() > *limits_.deadline) {
+    if ((limits_.deadline && Clock::now() > *limits_.deadline) || interrupt_requested()) {
       stopped_ = NlpOutcome::kTimeLimit;
       return false;
     }

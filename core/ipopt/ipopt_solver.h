@@ -53,7 +53,8 @@ struct BarrierStage {
 // What one solve may spend, and where it stops.
 struct NlpLimits {
   int iterations = 0;               // stop after this many iterations (0: Ipopt's max_iter only)
-  std::optional<Deadline> deadline;  // stop at the first iteration past it (none: no limit)
+  std::optional<Deadline> deadline;  // stop at the first iteration past it (none: no limit);
+                                     // an interrupt (core/util/interrupt.h) stops it too
   std::optional<BarrierStage> barrier;  // none: the configured mu strategy, to Ipopt's tol
 };
 
@@ -62,7 +63,7 @@ enum class NlpOutcome {
   kConverged,      // Ipopt's Solve_Succeeded or Solved_To_Acceptable_Level
   kInfeasible,     // Infeasible_Problem_Detected: locally infeasible
   kIterationCap,   // stopped at NlpLimits::iterations
-  kTimeLimit,      // stopped at NlpLimits::deadline
+  kTimeLimit,      // stopped at NlpLimits::deadline, or by an interrupt
   kMaxIterations,  // Ipopt's own max_iter
   kInvalidNumber,  // an evaluation failed: NaN, Inf or an error in a callback
   kFailed,         // any other Ipopt status (ipopt_status says which)

@@ -1,0 +1,90 @@
+#!/usr/bin/env python3
+"""The command line's traps (run by CTest as cli.traps; see tests/CMakeLists.txt).
+
+  cli_tests.py DISCO SCENES WORKDIR
+
+Each check runs disco and looks at its exit status and messages: the scene file may come
+after --set; an unknown command is named, with the closest one; a settings key that is a
+scene key gets the 'scene.' hint, a mistyped one the closest key; --model-only checks every
+option (Ipopt's too); --version; --help lists the exit statuses and the defaults of --starts
+and --out; SIGINT during `disco solve` writes the best point so far and exits 130.
+"""
+import json
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+from script_checks import check, finish
+
+DISCO, SCENES, WORK = sys.argv[1:4]
+ENV = dict(os.environ, OMP_NUM_THREADS="1")
+AXIS = os.path.join(SCENES, "one_robot_axis.yaml")
+os.makedirs(WORK, exist_ok=True)
+
+
+def run(*args):
+    return subprocess.run([DISCO, *args], env=ENV, capture_output=True, text=True)
+
+
+r = run("solve", "--set", "scene.steps=10", AXIS, "--model-only")
+check(r.returncode == 0 and "N_t = 10" in r.stderr,
+      f"solve --set KEY=VALUE SCENE: the scene file after --set is the scene ({r.stderr[-200:]!r})")
+r = run("solve", "--set", "scene.steps=10", "--set", "elastic.zeta=20", AXIS, "--model-only")
+check(r.returncode == 0 and "N_t = 10" in r.stderr, "two --set, then the scene file")
+r = run("search", "--set", "scene.steps=10", AXIS, os.path.join(SCENES, "one_robot_diagonal.yaml"),
+        "--starts", "1", "--out", os.path.join(WORK, "search_order"), "--force")
+check(r.returncode == 0 and "2 scene(s)" in r.stderr, "search --set KEY=VALUE CONFIG CONFIG: both configs")
+
+r = run("sovle", AXIS)
+check(r.returncode == 2 and "unknown command 'sovle' (did you mean 'solve'?)" in r.stderr,
+      f"an unknown command is named, with the closest one ({r.stderr.strip()!r})")
+r = run("serach", AXIS)
+check(r.returncode == 2 and "did you mean 'search'?" in r.stderr, "serach: did you mean 'search'?")
+
+r = run("solve", AXIS, "--set", "steps=10", "--model-only")
+check(r.returncode == 2 and "key 'steps'" in r.stderr and "scene.steps" in r.stderr,
+      f"--set steps=10: the hint that scene keys take 'scene.' ({r.stderr.strip()!r})")
+r = run("solve", AXIS, "--set", "zeta_max=1e8", "--model-only")
+check(r.returncode == 2 and "did you mean 'elastic.zeta_max'?" in r.stderr,
+      f"--set zeta_max=...: did you mean 'elastic.zeta_max'? ({r.stderr.strip()!r})")
+r = run("solve", AXIS, "--set", "elastic.zeta_mx=1e8", "--model-only")
+check(r.returncode == 2 and "did you mean 'elastic.zeta_max'" in r.stderr, "a typo in a settings key")
+
+r = run("solve", AXIS, "--model-only", "--set", "ipopt.tolerance=1e-6")
+check(r.returncode == 2 and "ipopt.tolerance" in r.stderr and "Ipopt has no such option" in r.stderr,
+      f"--model-only checks Ipopt's options ({r.stderr.strip()[-200:]!r})")
+r = run("solve", AXIS, "--model-only", "--set", "elastic.zeta_max=-1")
+check(r.returncode == 2 and "elastic.zeta_max" in r.stderr, "--model-only checks the elastic settings")
+
+r = run("--version")
+check(r.returncode == 0 and re.fullmatch(r"\d+\.\d+\.\d+ \(git [0-9a-f]+(-dirty)?\)\n|\d+\.\d+\.\d+ \(git unknown\)\n",
+                                         r.stdout) is not None,
+      f"--version prints the version and the commit ({r.stdout!r})")
+
+r = run("--help")
+check(r.returncode == 0 and "Exit status: 0" in r.stdout and "130" in r.stdout and "3 finished" in r.stdout,
+      "--help lists the exit statuses")
+r = run("search", "--help")
+check(r.returncode == 0 and re.search(r"--starts \S+=the benchmark file's", r.stdout) and
+      "--out TEXT=runs/search" in r.stdout and "--force" in r.stdout and "Exit status" in r.stdout,
+      f"search --help gives the defaults of --starts and --out ({r.stdout[:0]})")
+r = run("solve", "--help")
+check(r.returncode == 0 and "--out TEXT=out/SCENARIO" in r.stdout, "solve --help gives --out's default")
+
+# SIGINT during a solve: the best point so far is written, and the exit status says so.
+out = os.path.join(WORK, "interrupted_solve")
+shutil.rmtree(out, ignore_errors=True)
+proc = subprocess.Popen([DISCO, "solve", os.path.join(SCENES, "three_robots_contact.yaml"), "--out", out],
+                        env=ENV, stderr=subprocess.PIPE, text=True)
+time.sleep(4)
+proc.send_signal(signal.SIGINT)
+_, err = proc.communicate(timeout=60)
+check(proc.returncode == 130 and "interrupted: the solve stopped early;" in err,
+      f"solve: SIGINT exits 130 and says so ({proc.returncode}, {err.strip()[-200:]!r})")
+check(os.path.isfile(os.path.join(out, "solution.json")), "solve: SIGINT still writes solution.json")
+
+finish("cli_tests")
