@@ -443,6 +443,7 @@ class Search {
 // Everything every rank needs to run a task.
 struct Context {
   Settings settings;
+  std::vector<std::string> sets;  // --set, as given (for the solutions' provenance)
   SearchPlan plan;
   ReductionSettings schedule;
   ElasticSettings elastic;
@@ -461,6 +462,10 @@ StartOutcome run_task(const Context& c, const Task& t, json* solution) {
     };
   }
   StartOutcome o = run_start(scene, c.settings, spec, t.budget, t.source, solution, on_solve);
+  if (solution != nullptr && !solution->is_null())
+    (*solution)["provenance"] = provenance_json(
+        {"search", scene.source, c.plan.scenes[t.scene].overrides, c.sets, c.seed, t.start},
+        c.settings);
   o.rank = c.rank;
   return o;
 }
@@ -524,6 +529,7 @@ int run_search(const SearchOptions& o) {
   Context c;
   c.rank = rank;
   c.seed = o.seed;
+  c.sets = o.sets;
   std::vector<std::string> scene_sets, settings_sets;
   split_overrides(o.sets, scene_sets, settings_sets);
   c.settings = Settings::load(o.settings);

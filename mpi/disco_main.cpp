@@ -56,6 +56,7 @@
 namespace {
 
 using namespace disco;
+using json = nlohmann::json;
 
 constexpr const char* kExitCodes =
     "Exit status: 0 certified solution(s) written (search: for every scene); 3 finished "
@@ -215,7 +216,9 @@ int run_solve(const SolveOptions& o) {
   install_signal_handlers();
   const SceneSolve run = solve_scene(scene, settings, start, 0.0, on_solve);
   const std::string path = out_dir + "/solution.json";
-  write_json_file(path, solution_json(*run.problem, run.z, run.info));
+  json doc = solution_json(*run.problem, run.z, run.info);
+  doc["provenance"] = provenance_json({"solve", o.scene, scene_sets, o.sets, o.seed, o.start}, settings);
+  write_json_file(path, doc);
   if (interrupt_requested()) {
     spdlog::warn("interrupted: the solve stopped early; {} holds its best point so far{}", path,
                  run.solved() ? fmt::format(" (T_f = {:.6f} s, certified)", run.T_f())

@@ -9,6 +9,7 @@ scene key gets the 'scene.' hint, a mistyped one the closest key; --model-only c
 option (Ipopt's too); --version; --help lists the exit statuses and the defaults of --starts
 and --out; SIGINT during `disco solve` writes the best point so far and exits 130.
 """
+import hashlib
 import json
 import os
 import re
@@ -74,6 +75,20 @@ check(r.returncode == 0 and re.search(r"--starts \S+=the benchmark file's", r.st
       f"search --help gives the defaults of --starts and --out ({r.stdout[:0]})")
 r = run("solve", "--help")
 check(r.returncode == 0 and "--out TEXT=out/SCENARIO" in r.stdout, "solve --help gives --out's default")
+
+# solution.json says where it came from.
+out = os.path.join(WORK, "provenance")
+r = run("solve", "--set", "scene.steps=10", AXIS, "--out", out, "--seed", "3", "--start", "1")
+doc = json.load(open(os.path.join(out, "solution.json")))
+p = doc.get("provenance", {})
+version = run("--version").stdout.strip()
+check(r.returncode == 0 and p.get("mode") == "solve" and p.get("scene_file") == AXIS and
+      p.get("scene_sha256") == hashlib.sha256(open(AXIS, "rb").read()).hexdigest() and
+      p.get("scene_overrides") == ["steps=10"] and p.get("overrides") == ["scene.steps=10"] and
+      p.get("seed") == 3 and p.get("start") == 1 and p.get("version") == version and
+      len(p.get("settings_sha256", "")) == 64,
+      f"solve: solution.json's provenance names the inputs ({p})")
+check(len(doc.get("time") or []) == 11 and doc["time"][-1] == doc["T_f"], "solve: the time array")
 
 # SIGINT during a solve: the best point so far is written, and the exit status says so.
 out = os.path.join(WORK, "interrupted_solve")

@@ -108,6 +108,10 @@ def check_consistent(out, label, timing=False):
             sol = json.load(f)
         check(sol["T_f"] == m["T_f"] and sol["status"] == "solved",
               f"{label}: {scene} solution file matches its best")
+        prov = sol.get("provenance", {})
+        check(prov.get("mode") == "search" and prov.get("start") == m["start"] and
+              prov.get("seed") == m["seed"] and len(prov.get("scene_sha256", "")) == 64,
+              f"{label}: {scene} solution file's provenance names its start and seed")
         check(sol["certificate"]["max_violation"] <= 1e-6 and sol["certificate"]["max_complementarity"] <= 1e-6,
               f"{label}: {scene} best is certified")
         # Scene times (of one uninterrupted search): when a rank found the points,

@@ -36,6 +36,8 @@
 #include "core/config/solver_settings.h"
 #include "core/model/scene_yaml.h"
 #include "core/model/solution.h"
+#include "core/util/errors.h"
+#include "core/util/provenance.h"
 #include "search/solve_scene.h"
 #include "tests/test_support_model.h"
 
@@ -294,6 +296,8 @@ bool check_common_schema(const json& doc, const RobotProblem& problem) {
     if (!ok) return false;
     EXPECT_EQ(jp["i"].get<int>(), pr.i) << w;
     EXPECT_EQ(jp["j"].get<int>(), pr.j) << w;
+    EXPECT_EQ(jp.value("robot_i", ""), problem.scene().robots[pr.i].name) << w << ": robot_i names robot i";
+    EXPECT_EQ(jp.value("robot_j", ""), problem.scene().robots[pr.j].name) << w << ": robot_j names robot j";
     EXPECT_LT(jp["i"].get<int>(), jp["j"].get<int>()) << w;
     EXPECT_EQ(jp["mode"].get<std::string>(), pr.mode == PairMode::kContact ? "contact" : "avoid") << w;
     EXPECT_EQ(jp["safe_distance"].get<double>(), pr.safe_distance) << w;
@@ -317,6 +321,14 @@ bool check_solved_schema(const json& doc) {
   const double T = doc["T_f"].get<double>(), h = doc["h"].get<double>();
   EXPECT_GT(T, 0.0);
   EXPECT_NEAR(h, T / N, 1e-14 * T) << "h must be T_f / N_t";
+  // time: the instants of the state arrays, t_k = k h from 0 to T_f.
+  ok &= has_numbers(doc, "time", N + 1, "doc");
+  if (!ok) return false;
+  const json& time = doc["time"];
+  EXPECT_EQ(time[0].get<double>(), 0.0);
+  EXPECT_EQ(time[N].get<double>(), T) << "the last instant is T_f";
+  for (int k = 1; k <= N; ++k)
+    EXPECT_NEAR(time[k].get<double>() - time[k - 1].get<double>(), h, 1e-12 * T) << "time[" << k << "]";
   for (const char* k : {"max_violation", "max_complementarity", "complementarity_product"}) {
     const json& c = doc["certificate"][k];
     if (!c.is_number()) {
@@ -767,6 +779,7 @@ TEST(SolutionFile, SceneWithoutSolutionHasStatusAndNullTrajectories) {
       << "undocumented status_detail '" << detail << "'";
   has_null(doc, "T_f", "doc");
   has_null(doc, "h", "doc");
+  has_null(doc, "time", "doc");
   for (std::size_t r = 0; r < doc["robots"].size(); ++r) {
     std::string missing, not_null;
     std::vector<const char*> keys(std::begin(kStates), std::end(kStates));
@@ -782,6 +795,27 @@ TEST(SolutionFile, SceneWithoutSolutionHasStatusAndNullTrajectories) {
   ASSERT_EQ(doc["pairs"].size(), 1u);
   for (const char* k : {"distance", "normal_force", "tangential_force"})
     has_null(doc["pairs"][0], k, "pairs[0]");
+}
+
+TEST(SolutionFile, ProvenanceNamesTheInputsWithTheirHashesAndTheVersion) {
+  const std::string scene = std::string(DISCO_SOURCE_DIR) + "/configs/scenarios/one_robot_axis.yaml";
+  Settings settings = Settings::load(default_settings_path());
+  settings.apply_override("elastic.zeta=20");
+  const json p = provenance_json({"search", scene, {"steps=20"}, {"scene.steps=20", "elastic.zeta=20"}, 7, 3},
+                                 settings);
+  EXPECT_EQ(p.at("mode"), "search");
+  EXPECT_EQ(p.at("scene_file"), scene);
+  EXPECT_EQ(p.at("scene_sha256"), file_sha256(scene));
+  EXPECT_EQ(p.at("scene_overrides"), json::array({"steps=20"}));
+  EXPECT_EQ(p.at("overrides"), json::array({"scene.steps=20", "elastic.zeta=20"}));
+  EXPECT_EQ(p.at("seed"), 7);
+  EXPECT_EQ(p.at("start"), 3);
+  EXPECT_EQ(p.at("settings_file"), default_settings_path());
+  EXPECT_EQ(p.at("settings_sha256"), sha256_hex(settings.canonical_text()));
+  EXPECT_NE(p.at("settings_sha256"), sha256_hex(Settings::load(default_settings_path()).canonical_text()))
+      << "the settings hash is of the settings after the overrides";
+  EXPECT_EQ(p.at("version"), disco_version());
+  EXPECT_THROW(provenance_json({"solve", scene + ".missing", {}, {}, 1, 0}, settings), InputError);
 }
 
 }  // namespace

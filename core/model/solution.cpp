@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "core/model/lower_bound.h"
+#include "core/util/provenance.h"
 
 namespace disco {
 namespace {
@@ -37,6 +38,14 @@ json solution_json(const RobotProblem& problem, const Vector& z, const SolutionI
   doc["T_f"] = has ? json(problem.horizon(z)) : json(nullptr);
   doc["N_t"] = N;
   doc["h"] = has ? json(problem.horizon(z) / N) : json(nullptr);
+  if (has) {
+    std::vector<double> time(N + 1);
+    const double T = problem.horizon(z);
+    for (int t = 0; t <= N; ++t) time[t] = t == N ? T : T * t / N;
+    doc["time"] = time;
+  } else {
+    doc["time"] = nullptr;
+  }
   doc["g"] = si.gravity;
   doc["lower_bound"] = lb ? bound(*lb) : json(nullptr);
   doc["model"] = {{"variables", size.variables},
@@ -63,6 +72,8 @@ json solution_json(const RobotProblem& problem, const Vector& z, const SolutionI
     const Pair& pr = si.pairs[p];
     json jp = {{"i", pr.i},
                {"j", pr.j},
+               {"robot_i", si.robots[pr.i].name},
+               {"robot_j", si.robots[pr.j].name},
                {"mode", pr.mode == PairMode::kContact ? "contact" : "avoid"},
                {"safe_distance", pr.safe_distance},
                {"mu", pr.mu}};
@@ -151,6 +162,19 @@ json solution_json(const RobotProblem& problem, const Vector& z, const SolutionI
   doc["robots"] = robots;
   doc["pairs"] = pairs;
   return doc;
+}
+
+json provenance_json(const Provenance& p, const Settings& settings) {
+  return {{"mode", p.mode},
+          {"scene_file", p.scene_file},
+          {"scene_sha256", file_sha256(p.scene_file)},
+          {"scene_overrides", p.scene_overrides},
+          {"overrides", p.overrides},
+          {"seed", p.seed},
+          {"start", p.start},
+          {"settings_file", settings.source()},
+          {"settings_sha256", sha256_hex(settings.canonical_text())},
+          {"version", disco_version()}};
 }
 
 void write_json_file(const std::string& path, const json& doc) {

@@ -1,7 +1,8 @@
 // disco — the solution file (solution.json), in SI units.
 //
 // Schema (documented for users in README.md, "The solution file"):
-//   scenario, status, status_detail (when not solved), T_f, N_t, h, g, lower_bound (or null),
+//   scenario, status, status_detail (when not solved), T_f, N_t, h,
+//   time (N_t + 1 values: t_k = k h, 0 to T_f; null without a solution), g, lower_bound (or null),
 //   model {variables, constraints, complementarity_pairs},
 //   certificate {max_violation, max_complementarity, complementarity_product, units},
 //   timing {wall_s, nlp_solves, iterations},
@@ -10,15 +11,25 @@
 //     x, y, phi, vx, vy, omega (N_t + 1 values; index 0 = the start),
 //     Fx, Fy, friction_x, friction_y, contact_x, contact_y, contact_torque (N_t values:
 //     over the step from t to t+1; contact_* sum every contact force on the robot);
-//   pairs[]: i, j, mode, safe_distance, mu, distance (N_t + 1: rho),
+//   pairs[]: i, j, robot_i, robot_j (the robots' names), mode, safe_distance, mu,
+//     distance (N_t + 1: rho),
 //     normal_force (N_t: push of i on j along the unit vector from i's centre to j's),
 //     tangential_force (N_t: i's force on j along that unit vector turned +90 degrees);
-//     the force on i is the opposite.
+//     the force on i is the opposite;
+//   provenance (added by disco solve and disco search, provenance_json): mode ("solve" or
+//     "search"), scene_file, scene_sha256 (of the file's bytes), scene_overrides (applied to the
+//     scene: a benchmark entry's `set`, then --set scene.*, without the prefix), overrides (the
+//     command's --set list as given), seed, start, settings_file, settings_sha256 (of
+//     Settings::canonical_text(), after the overrides), version (disco_version()).
 #pragma once
 
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
+
+#include "core/config/settings.h"
 
 #include "core/elastic/elastic_solver.h"
 #include "core/model/robot_problem.h"
@@ -37,6 +48,19 @@ struct SolutionInfo {
 // The trajectory of point z (model units) of `problem`, with `info`; z may be
 // empty (no solution): then T_f and the arrays are null.
 nlohmann::json solution_json(const RobotProblem& problem, const Vector& z, const SolutionInfo& info);
+
+// Where a solution came from.
+struct Provenance {
+  std::string mode;                          // "solve" or "search"
+  std::string scene_file;                    // as given
+  std::vector<std::string> scene_overrides;  // applied to the scene (KEY=VALUE, no "scene.")
+  std::vector<std::string> overrides;        // the command's --set list, as given
+  std::uint64_t seed = 1;
+  int start = 0;
+};
+// `p` with the scene file's SHA-256 (InputError if it cannot be read), the settings' file and
+// SHA-256, and disco's version: the file's "provenance".
+nlohmann::json provenance_json(const Provenance& p, const Settings& settings);
 
 // Writes JSON to `path` atomically (temporary file, then rename).
 void write_json_file(const std::string& path, const nlohmann::json& doc);
