@@ -467,6 +467,7 @@ StartOutcome run_task(const Context& c, const Task& t, json* solution) {
         {"search", scene.source, c.plan.scenes[t.scene].overrides, c.sets, c.seed, t.start},
         c.settings);
   o.rank = c.rank;
+  spdlog::debug("  {} start {}: {}", scene.name, t.start, o.stopped);
   return o;
 }
 

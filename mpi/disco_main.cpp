@@ -50,6 +50,7 @@
 #include "core/ipopt/ipopt_solver.h"
 #include "mpi/coordinator.h"
 #include "mpi/live_line.h"
+#include "search/reduction_phases.h"
 #include "search/solve_scene.h"
 #include "search/start.h"
 
@@ -215,6 +216,7 @@ int run_solve(const SolveOptions& o) {
 
   install_signal_handlers();
   const SceneSolve run = solve_scene(scene, settings, start, 0.0, on_solve);
+  spdlog::info("  {}", stop_line(run.result.stop, start.schedule));
   const std::string path = out_dir + "/solution.json";
   json doc = solution_json(*run.problem, run.z, run.info);
   doc["provenance"] = provenance_json({"solve", o.scene, scene_sets, o.sets, o.seed, o.start}, settings);

@@ -217,18 +217,36 @@ double feasibility_horizon(const RobotProblem& problem, const ReductionSettings&
 
 std::string solve_log_header() {
   return fmt::format("{:>3} {:<11} {:>10} {:>10} {:<17} {:>9} {:>9} {:>4} {:>5} {:>7}", "#",
-                     "phase", "bound[s]", "T_f[s]", "status", "compl", "viol", "nlp", "iter",
+                     "phase", "bound[s]", "T_f[s]", "ended", "compl", "viol", "nlp", "iter",
                      "sec");
 }
 
+std::string solve_outcome_words(MpccStatus status, NlpOutcome outcome) {
+  switch (status) {
+    case MpccStatus::kSolved: return "solved";
+    case MpccStatus::kElasticNotTight: return "not tight";
+    case MpccStatus::kInfeasible: return "infeasible";
+    case MpccStatus::kFailed: break;
+  }
+  switch (outcome) {
+    case NlpOutcome::kIterationCap: return "cap reached";
+    case NlpOutcome::kTimeLimit: return interrupt_requested() ? "interrupted" : "time limit";
+    case NlpOutcome::kInvalidNumber: return "invalid number";
+    case NlpOutcome::kMaxIterations: return "max_iter";
+    default: return "failed";
+  }
+}
+
 std::string solve_log_line(int number, const SolveRecord& r) {
+  const std::string words = solve_outcome_words(r.status, r.outcome);
   return fmt::format(
       "{:>3} {:<11} {:>10.5f} {:>10.5f} {:<17} {:>9.1e} {:>9.1e} {:>4} {:>5} {:>7.3f}{}", number,
-      r.phase, r.bound, r.T_f, to_string(r.status), r.certificate.max_complementarity,
+      r.phase, r.bound, r.T_f, words, r.certificate.max_complementarity,
       r.certificate.max_violation, r.nlp_solves, r.iterations, r.seconds,
-      r.improved                          ? std::string("  *")
-      : r.status == MpccStatus::kFailed ? "  (" + describe(r.outcome, r.ipopt_status) + ")"
-                                          : std::string());
+      r.improved ? std::string("  *")
+      : words == "failed" || words == "invalid number"
+          ? "  (Ipopt: " + ipopt_status_name(r.ipopt_status) + ")"
+          : std::string());
 }
 
 ReductionResult reduce_objective(RobotProblem& problem, const ElasticSolver& solver,
@@ -240,8 +258,8 @@ ReductionResult reduce_objective(RobotProblem& problem, const ElasticSolver& sol
   // The phases (search/reduction_phases.h): each runs its solve, then asks where to go.
   PhaseOutcome o;  // facts carried from phase to phase (smallest, perturb)
   o.perturb = static_cast<bool>(perturb);
-  for (ReductionState s = begin_reduction(cfg); s.phase != Phase::kDone;
-       s = next_phase(s, o, cfg)) {
+  ReductionState s = begin_reduction(cfg);
+  for (; s.phase != Phase::kDone; s = next_phase(s, o, cfg)) {
     o.solved = o.improved = o.failed = o.inside_bound = false;
     switch (s.phase) {
       case Phase::kFeasibility: {  // 1. at a fixed, generous horizon (doubled per attempt)
@@ -311,6 +329,8 @@ ReductionResult reduce_objective(RobotProblem& problem, const ElasticSolver& sol
   // Free the horizon again: the problem is the model itself for later users.
   problem.limit_horizon(kInf);
   if (out.found) out.status = MpccStatus::kSolved;
+  out.stop = s.stop == StopReason::kOutOfTime && interrupt_requested() ? StopReason::kInterrupted
+                                                                       : s.stop;
   out.seconds = run.elapsed();
   return out;
 }

@@ -135,14 +135,21 @@ struct SolveRecord {
 
 // The solve log of `disco solve` (and of every start under `disco search
 // --verbose`): a header, then one line per elastic-mode solve, numbered from 1:
-// phase, T_f bound and reached, status, certificate, Ipopt solves, iterations
-// and seconds, and "*" for a new best (for a failure, why: "iteration cap", "time limit" or
-// Ipopt's status).
+// phase, T_f bound and reached, how it ended in words (solve_outcome_words), certificate,
+// Ipopt solves, iterations and seconds, and "*" for a new best (for a real failure, Ipopt's
+// status in parentheses). The loop's last line, stop_line() (search/reduction_phases.h),
+// says why it stopped.
 std::string solve_log_header();
 std::string solve_log_line(int number, const SolveRecord& r);
+// "solved", "not tight", "infeasible", "cap reached" (its iteration cap), "time limit",
+// "invalid number" (an evaluation gave NaN or Inf), "max_iter" (Ipopt's own), or "failed".
+std::string solve_outcome_words(MpccStatus status, NlpOutcome outcome);
+
+enum class StopReason;  // search/reduction_phases.h
 
 struct ReductionResult {
   bool found = false;        // a certified solution exists
+  StopReason stop{};         // why the loop ended (stop_line() says it in words)
   MpccStatus status = MpccStatus::kFailed;  // kSolved if found; else kInfeasible or kFailed
   std::string feasibility_detail;           // the last feasibility solve's own status; when
                                             // kFailed with Ipopt's, "failed (Ipopt: NAME)"

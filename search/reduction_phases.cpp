@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <spdlog/fmt/fmt.h>
+
 #include "core/util/check.h"
 
 namespace disco {
@@ -13,7 +15,8 @@ constexpr double kMaxRate = 0.5;
 
 // The loop after it ends: a last minimisation if the best came from fixed steps not
 // minimised since, else done.
-ReductionState finish(ReductionState s, const PhaseOutcome& o) {
+ReductionState finish(ReductionState s, const PhaseOutcome& o, StopReason why) {
+  s.stop = why;
   const bool fixed = s.phase == Phase::kFixedStep || s.phase == Phase::kProbe;
   s.phase = fixed && !s.minimized && !o.out_of_time ? Phase::kFinalMinimize : Phase::kDone;
   return s;
@@ -24,11 +27,12 @@ ReductionState finish(ReductionState s, const PhaseOutcome& o) {
 ReductionState admit(ReductionState s, const PhaseOutcome& o, const ReductionSettings& cfg) {
   if (o.out_of_time) {
     s.phase = Phase::kDone;
+    s.stop = StopReason::kOutOfTime;
     return s;
   }
-  if (s.steps >= cfg.max_solves) return finish(s, o);
+  if (s.steps >= cfg.max_solves) return finish(s, o, StopReason::kMaxSolves);
   while (s.rate >= cfg.min_rate && step_bound(s, o.T_best) < o.smallest) s.rate *= cfg.shrink;
-  if (s.rate < cfg.min_rate) return finish(s, o);
+  if (s.rate < cfg.min_rate) return finish(s, o, StopReason::kMinRate);
   return s;
 }
 
@@ -52,6 +56,25 @@ std::string to_string(Phase phase) {
   return "done";
 }
 
+std::string stop_line(StopReason reason, const ReductionSettings& cfg) {
+  switch (reason) {
+    case StopReason::kNone: return "stopped: (still running)";
+    case StopReason::kNoFeasiblePoint:
+      return fmt::format("stopped: no feasible point after {} feasibility attempts (each at twice "
+                         "the horizon of the last)", kFeasibilityAttempts);
+    case StopReason::kOutOfTime: return "stopped: time limit reached";
+    case StopReason::kInterrupted: return "stopped: interrupted (SIGINT or SIGTERM)";
+    case StopReason::kMaxSolves:
+      return fmt::format("stopped: reduction.max_solves = {} steps made", cfg.max_solves);
+    case StopReason::kMinRate:
+      return fmt::format("stopped: the reduction rate fell below reduction.min_rate = {:g}",
+                         cfg.min_rate);
+    case StopReason::kLocalOptimum:
+      return "stopped: a local optimum (a fixed step below it found nothing better)";
+  }
+  return "stopped";
+}
+
 ReductionState begin_reduction(const ReductionSettings& cfg) {
   ReductionState s;
   s.rate = cfg.rate;
@@ -68,9 +91,10 @@ ReductionState next_phase(const ReductionState& state, const PhaseOutcome& o,
         if (o.perturb && !o.out_of_time) return with_phase(s, Phase::kPerturbed);
         return admit(with_phase(s, Phase::kMinimizingStep), o, cfg);
       }
-      return with_phase(s, s.attempt < kFeasibilityAttempts && !o.out_of_time
-                               ? Phase::kFeasibility
-                               : Phase::kDone);
+      if (s.attempt < kFeasibilityAttempts && !o.out_of_time)
+        return with_phase(s, Phase::kFeasibility);
+      s.stop = o.out_of_time ? StopReason::kOutOfTime : StopReason::kNoFeasiblePoint;
+      return with_phase(s, Phase::kDone);
     case Phase::kPerturbed: return admit(with_phase(s, Phase::kMinimizingStep), o, cfg);
     case Phase::kMinimizingStep:
       s.steps += 1;
@@ -94,7 +118,8 @@ ReductionState next_phase(const ReductionState& state, const PhaseOutcome& o,
         return admit(with_phase(s, Phase::kFixedStep), o, cfg);
       }
       s.rate *= cfg.shrink;
-      if (state.phase == Phase::kProbe) return finish(s, o);  // nothing below the optimum
+      if (state.phase == Phase::kProbe)  // nothing below the optimum
+        return finish(s, o, StopReason::kLocalOptimum);
       // The first fixed step that fails: the homotopy has passed the local optimum's
       // horizon, so minimise from the best point now.
       if (!s.minimized && !s.cut_short && !o.out_of_time) {
@@ -109,7 +134,9 @@ ReductionState next_phase(const ReductionState& state, const PhaseOutcome& o,
       if (cfg.minimize_iterations > 0) s.minimized = false, s.cut_short = true;
       return admit(with_phase(s, Phase::kFixedStep), o, cfg);
     case Phase::kFinalMinimize:
-    case Phase::kDone: return with_phase(s, Phase::kDone);
+    case Phase::kDone:
+      DISCO_CHECK(s.stop != StopReason::kNone, "only finish() leads to the final minimisation");
+      return with_phase(s, Phase::kDone);
   }
   DISCO_CHECK(false, "unknown reduction phase");
   return s;

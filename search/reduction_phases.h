@@ -33,6 +33,21 @@ enum class Phase {
 };
 std::string to_string(Phase phase);  // the solve log's name: "feasibility", "fixed step", ...
 
+// Why the loop ended, decided by the transition that ends it (a final minimisation may run
+// after the decision; it does not change the reason).
+enum class StopReason {
+  kNone,             // still running
+  kNoFeasiblePoint,  // every feasibility attempt failed
+  kOutOfTime,        // the time limit passed
+  kInterrupted,      // an interrupt (core/util/interrupt.h); set by reduce_objective
+  kMaxSolves,        // reduction.max_solves steps made
+  kMinRate,          // the rate fell below reduction.min_rate (or no rate >= it keeps the
+                     // bound above the smallest horizon)
+  kLocalOptimum,     // a fixed step below a local optimum (a probe) gave nothing better
+};
+// The solve log's last line: "stopped: ..." in words, with the settings it names.
+std::string stop_line(StopReason reason, const ReductionSettings& settings);
+
 struct ReductionState {
   Phase phase = Phase::kFeasibility;
   int attempt = 0;          // feasibility attempts made
@@ -40,6 +55,7 @@ struct ReductionState {
   int steps = 0;            // steps made (minimising, fixed and probes)
   bool minimized = false;   // minimised since the last fixed step that gave a new best
   bool cut_short = false;   // an early minimisation stopped at minimize_iterations
+  StopReason stop = StopReason::kNone;  // set by the transition that ends the loop
 };
 
 // What the current phase's solve gave, and the run's facts the next choice depends on.

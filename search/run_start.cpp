@@ -8,6 +8,7 @@
 
 #include "core/model/solution.h"
 #include "core/util/interrupt.h"
+#include "search/reduction_phases.h"
 #include "search/solve_scene.h"
 
 namespace disco {
@@ -70,6 +71,7 @@ json StartOutcome::to_json() const {
           {"seed", seed},
           {"status", to_string(status)},
           {"detail", detail},
+          {"stopped", stopped},
           {"budget", {{"seconds", budget}, {"set_by", to_string(budget_source)}}},
           {"T_f", number_or_null(T_f)},
           {"certificate",
@@ -95,6 +97,7 @@ StartOutcome StartOutcome::from_json(const json& j) {
   o.seed = j.at("seed").get<std::uint64_t>();
   o.status = start_status_from_string(j.at("status").get<std::string>());
   o.detail = j.value("detail", "");
+  o.stopped = j.value("stopped", "");
   if (j.contains("budget")) {
     o.budget = j["budget"].at("seconds").get<double>();
     o.budget_source = budget_source_from_string(j["budget"].at("set_by").get<std::string>());
@@ -133,6 +136,7 @@ StartOutcome run_start(const Scene& scene, const Settings& settings, const Start
     SceneSolve run = solve_scene(scene, settings, start, time_budget_s, on_solve);
     const ReductionResult& r = run.result;
     out.status = status_of(r.status);
+    out.stopped = stop_line(r.stop, start.schedule);
     out.nlp_solves = r.nlp_solves;
     out.iterations = r.iterations;
     out.time_to_first_feasible = r.time_to_first_feasible;

@@ -52,6 +52,7 @@ struct StartOutcome {
   std::uint64_t seed = 0;
   StartStatus status = StartStatus::kError;
   std::string detail;  // error message; last feasibility status when not solved
+  std::string stopped;  // why its objective reduction stopped (stop_line, reduction_phases.h)
   double budget = 0.0;  // s: the time budget the start had (0: none)
   BudgetSource budget_source = BudgetSource::kNone;
   double T_f = std::numeric_limits<double>::quiet_NaN();  // s, NaN if none

@@ -19,6 +19,7 @@
 #include "core/model/robot_problem.h"
 #include "core/model/scene_yaml.h"
 #include "search/objective_reduction.h"
+#include "search/reduction_phases.h"
 #include "search/run_start.h"
 #include "search/solve_scene.h"
 #include "search/start.h"
@@ -303,6 +304,11 @@ TEST(ObjectiveReduction, ACappedEarlyMinimisationHandsBackToTheFixedSteps) {
   ASSERT_EQ(minimizations.size(), 2u);
   const SolveRecord& capped = result.solves[minimizations[0]];
   EXPECT_NE(capped.status, MpccStatus::kSolved);
+  // The log says the cap ended it, in words, not as a failure of Ipopt's.
+  const std::string line = solve_log_line(1, capped);
+  EXPECT_NE(line.find("cap reached"), std::string::npos) << line;
+  EXPECT_EQ(line.find("failed"), std::string::npos) << line;
+  EXPECT_EQ(line.find("Ipopt"), std::string::npos) << line;
   EXPECT_FALSE(capped.improved);
   EXPECT_LE(capped.iterations, 3 * capped.nlp_solves);
   EXPECT_EQ(result.solves[minimizations[0] + 1].phase, "fixed step");
@@ -310,6 +316,27 @@ TEST(ObjectiveReduction, ACappedEarlyMinimisationHandsBackToTheFixedSteps) {
   EXPECT_EQ(last.status, MpccStatus::kSolved);
   EXPECT_GT(last.iterations, 3);
   EXPECT_EQ(minimizations[1] + 1, result.solves.size());
+  EXPECT_NE(result.stop, StopReason::kNone) << "a finished loop says why it stopped";
+}
+
+TEST(ObjectiveReduction, TheSolveLogSaysHowEachSolveEndedInWords) {
+  EXPECT_EQ(solve_outcome_words(MpccStatus::kSolved, NlpOutcome::kConverged), "solved");
+  EXPECT_EQ(solve_outcome_words(MpccStatus::kElasticNotTight, NlpOutcome::kConverged), "not tight");
+  EXPECT_EQ(solve_outcome_words(MpccStatus::kInfeasible, NlpOutcome::kInfeasible), "infeasible");
+  EXPECT_EQ(solve_outcome_words(MpccStatus::kFailed, NlpOutcome::kIterationCap), "cap reached");
+  EXPECT_EQ(solve_outcome_words(MpccStatus::kFailed, NlpOutcome::kTimeLimit), "time limit");
+  EXPECT_EQ(solve_outcome_words(MpccStatus::kFailed, NlpOutcome::kInvalidNumber), "invalid number");
+  EXPECT_EQ(solve_outcome_words(MpccStatus::kFailed, NlpOutcome::kFailed), "failed");
+  // Only a real failure names Ipopt's status.
+  SolveRecord r;
+  r.phase = "reduction";
+  r.status = MpccStatus::kFailed;
+  r.outcome = NlpOutcome::kFailed;
+  r.ipopt_status = -2;  // Restoration_Failed
+  EXPECT_NE(solve_log_line(3, r).find("failed            "), std::string::npos) << solve_log_line(3, r);
+  EXPECT_NE(solve_log_line(3, r).find("(Ipopt: Restoration_Failed)"), std::string::npos) << solve_log_line(3, r);
+  r.outcome = NlpOutcome::kIterationCap;
+  EXPECT_EQ(solve_log_line(3, r).find("Ipopt"), std::string::npos) << solve_log_line(3, r);
 }
 
 }  // namespace

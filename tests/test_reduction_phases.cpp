@@ -70,15 +70,18 @@ TEST(ReductionPhases, TheFeasibilityPhaseTriesThreeHorizons) {
   EXPECT_EQ(s.attempt, 1);
   s = next_phase(s, no_gain(), schedule());
   EXPECT_EQ(s.phase, Phase::kFeasibility);
+  EXPECT_EQ(s.stop, StopReason::kNone);
   s = next_phase(s, failed(), schedule());
   EXPECT_EQ(s.phase, Phase::kDone);
   EXPECT_EQ(s.attempt, 3);
+  EXPECT_EQ(s.stop, StopReason::kNoFeasiblePoint);
 }
 
 TEST(ReductionPhases, NoFurtherFeasibilityAttemptPastTheTimeLimit) {
   PhaseOutcome o = failed();
   o.out_of_time = true;
   EXPECT_EQ(next_phase(begin_reduction(schedule()), o, schedule()).phase, Phase::kDone);
+  EXPECT_EQ(next_phase(begin_reduction(schedule()), o, schedule()).stop, StopReason::kOutOfTime);
 }
 
 TEST(ReductionPhases, ThePerturbedFeasibilityLeadsToAMinimizingStepWhateverItGave) {
@@ -186,6 +189,13 @@ TEST(ReductionPhases, AProbeThatFailsEndsTheLoop) {
   from.minimized = true;
   EXPECT_EQ(next_phase(from, no_gain(), schedule()).phase, Phase::kDone);
   EXPECT_EQ(next_phase(from, failed(), schedule()).phase, Phase::kDone);
+  EXPECT_EQ(next_phase(from, failed(), schedule()).stop, StopReason::kLocalOptimum);
+  // Without a minimisation since its last new best, the loop minimises first; the reason stays.
+  from.minimized = false;
+  const ReductionState s = next_phase(from, no_gain(), schedule());
+  EXPECT_EQ(s.phase, Phase::kFinalMinimize);
+  EXPECT_EQ(s.stop, StopReason::kLocalOptimum);
+  EXPECT_EQ(next_phase(s, improved(), schedule()).stop, StopReason::kLocalOptimum);
 }
 
 TEST(ReductionPhases, AProbeThatImprovesLeavesTheOptimumBehind) {
@@ -208,12 +218,17 @@ TEST(ReductionPhases, AfterMaxSolvesStepsFixedStepsEndWithAFinalMinimisation) {
   const ReductionState s = next_phase(last_fixed_step(), improved(), schedule());
   EXPECT_EQ(s.phase, Phase::kFinalMinimize);
   EXPECT_EQ(s.steps, schedule().max_solves);
+  EXPECT_EQ(s.stop, StopReason::kMaxSolves);
+  const ReductionState done = next_phase(s, improved(), schedule());
+  EXPECT_EQ(done.phase, Phase::kDone);
+  EXPECT_EQ(done.stop, StopReason::kMaxSolves);
 }
 
 TEST(ReductionPhases, AfterMaxSolvesMinimizingStepsEndWithoutOne) {
   ReductionState from = in(Phase::kMinimizingStep);
   from.steps = schedule().max_solves - 1;
   EXPECT_EQ(next_phase(from, improved(), schedule()).phase, Phase::kDone);
+  EXPECT_EQ(next_phase(from, improved(), schedule()).stop, StopReason::kMaxSolves);
 }
 
 TEST(ReductionPhases, NoFinalMinimisationOfAnAlreadyMinimisedBest) {
@@ -244,6 +259,9 @@ TEST(ReductionPhases, ARateBelowMinRateEndsTheLoop) {
   // Minimising steps: done.
   EXPECT_EQ(next_phase(in(Phase::kMinimizingStep, 0.015), no_gain(), schedule()).phase,
             Phase::kDone);
+  EXPECT_EQ(next_phase(in(Phase::kMinimizingStep, 0.015), no_gain(), schedule()).stop,
+            StopReason::kMinRate);
+  EXPECT_EQ(next_phase(from, no_gain(), schedule()).stop, StopReason::kMinRate);
   // No rate keeps the bound above the smallest horizon.
   PhaseOutcome o = improved();
   o.smallest = 9.99;
@@ -254,13 +272,35 @@ TEST(ReductionPhases, NoStepPastTheTimeLimit) {
   PhaseOutcome o = improved();
   o.out_of_time = true;
   for (Phase p : {Phase::kPerturbed, Phase::kMinimizingStep, Phase::kFixedStep, Phase::kProbe,
-                  Phase::kEarlyMinimize})
+                  Phase::kEarlyMinimize}) {
     EXPECT_EQ(next_phase(in(p), o, schedule()).phase, Phase::kDone) << to_string(p);
+    EXPECT_EQ(next_phase(in(p), o, schedule()).stop, StopReason::kOutOfTime) << to_string(p);
+  }
+}
+
+TEST(ReductionPhases, AStepThatGoesOnHasNoStopReason) {
+  EXPECT_EQ(next_phase(in(Phase::kMinimizingStep), improved(), schedule()).stop, StopReason::kNone);
+  EXPECT_EQ(next_phase(in(Phase::kFixedStep), improved(), schedule()).stop, StopReason::kNone);
+}
+
+TEST(ReductionPhases, TheLastLineSaysWhyTheLoopStoppedNamingTheSetting) {
+  EXPECT_EQ(stop_line(StopReason::kMaxSolves, schedule()), "stopped: reduction.max_solves = 10 steps made");
+  EXPECT_EQ(stop_line(StopReason::kMinRate, schedule()),
+            "stopped: the reduction rate fell below reduction.min_rate = 0.01");
+  EXPECT_EQ(stop_line(StopReason::kLocalOptimum, schedule()),
+            "stopped: a local optimum (a fixed step below it found nothing better)");
+  EXPECT_EQ(stop_line(StopReason::kNoFeasiblePoint, schedule()),
+            "stopped: no feasible point after 3 feasibility attempts (each at twice the horizon of the last)");
+  EXPECT_EQ(stop_line(StopReason::kOutOfTime, schedule()), "stopped: time limit reached");
+  EXPECT_EQ(stop_line(StopReason::kInterrupted, schedule()), "stopped: interrupted (SIGINT or SIGTERM)");
 }
 
 TEST(ReductionPhases, AFinalMinimisationEndsTheRun) {
-  EXPECT_EQ(next_phase(in(Phase::kFinalMinimize), improved(), schedule()).phase, Phase::kDone);
-  EXPECT_EQ(next_phase(in(Phase::kFinalMinimize), failed(), schedule()).phase, Phase::kDone);
+  ReductionState from = in(Phase::kFinalMinimize);
+  from.stop = StopReason::kMinRate;  // set by the transition that led to it
+  EXPECT_EQ(next_phase(from, improved(), schedule()).phase, Phase::kDone);
+  EXPECT_EQ(next_phase(from, failed(), schedule()).phase, Phase::kDone);
+  EXPECT_EQ(next_phase(from, failed(), schedule()).stop, StopReason::kMinRate);
 }
 
 TEST(ReductionPhases, PhasesHaveTheSolveLogsNames) {
