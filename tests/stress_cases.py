@@ -66,9 +66,20 @@ CASES = {
     # with roundoff: the full model at 32.33 s, the adaptive one at 33.17 s): its T_f must
     # not beat the optimum, and a search of `starts` starts must reach it.
     "weak_force": {"outcome": "solved", "why": "F_max = 1.001 mu M g: a_1 = 0.00196 m/s^2", "starts": 4},
-    "unreachable_target": {"outcome": "infeasible", "why": "phi target: a lone robot has no torque"},
-    "off_axis_target": {"outcome": "infeasible", "why": "D_ef 1 along x, target off the axis"},
-    "overlapping_targets": {"outcome": "infeasible", "why": "avoid pair, targets 0.8 m apart < R+R+d_s"},
+    # Unreachable for a reason the scene shows: rejected before solving (core/model/reachability.h).
+    "unreachable_target": {"outcome": "input_error", "key": "robots[0].target",
+                           "message": "unreachable: robot 'r1' cannot turn",
+                           "why": "phi target: a lone robot has no torque"},
+    "off_axis_target": {"outcome": "input_error", "key": "robots[0].target",
+                        "message": "unreachable: robot 'r1' is driven along its force_axis (1, 0) only",
+                        "why": "D_ef 1 along x, target off the axis"},
+    "overlapping_targets": {"outcome": "input_error", "key": "robots[1].target",
+                            "message": "unreachable: robots 'a' and 'b' (an avoid pair): their targets "
+                                       "keep their centres at most 0.8 m apart",
+                            "why": "avoid pair, targets 0.8 m apart < R+R+d_s"},
+    # Unreachable for a reason the checks do not cover: the solve finds no feasible point.
+    "spin_short": {"outcome": "infeasible", "why": "a lone robot spinning at the start: damping "
+                                                   "stops it 0.025 rad on, short of its phi target"},
     "too_weak": {"outcome": "input_error", "key": "robots[0].force_max", "message": "too weak to move",
                  "why": "F_max <= mu M g: rejected by the parser"},
     "overflow": {"outcome": "failed", "why": "a swap across 1e160 m: the gap row overflows (Inf)"},
@@ -266,12 +277,17 @@ def expected_T(name):
 
 
 def input_error_line(name, key):
-    """The line of the scene file that holds the last component of `key` (1-based)."""
+    """The line of the scene file that holds the last component of `key` (1-based); for a key
+    of robots[i], its (i+1)-th occurrence (each robot of these scenes gives it once)."""
     leaf = key.split(".")[-1]
+    m = re.match(r"robots\[(\d+)\]\.", key)
+    skip = int(m.group(1)) if m else 0
     with open(scene_path(name)) as f:
         for k, line in enumerate(f, 1):
             if re.match(rf"\s*{re.escape(leaf)}\s*:", line):
-                return k
+                if skip == 0:
+                    return k
+                skip -= 1
     raise PremiseError(f"{name}: no line with '{leaf}:'")
 
 

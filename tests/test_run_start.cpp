@@ -93,7 +93,7 @@ TEST(RunStart, ItsHistoryListsEveryNewBestOnTheStartsOwnClock) {
 
 TEST(RunStart, AStartWithoutASolutionHasAnEmptyHistory) {
   Settings settings = Settings::load(default_settings_path());
-  const Scene scene = load_scene(std::string(DISCO_SOURCE_DIR) + "/configs/stress/off_axis_target.yaml");
+  const Scene scene = load_scene(std::string(DISCO_SOURCE_DIR) + "/configs/stress/spin_short.yaml");
   const StartSpec spec = make_start(scene, 1, 0, reduction_settings(settings),
                                     elastic_settings(settings));
   const StartOutcome out = run_start(scene, settings, spec, 0.0, BudgetSource::kNone);

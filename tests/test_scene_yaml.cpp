@@ -204,7 +204,7 @@ TEST(SceneYaml, BuiltInDefaults) {
   const char* text = R"(scenario: one
 steps: 1
 robots:
-  - {name: r, radius: 1, mass: 1, mu: 0, force_max: 1, start: {x: 0, y: 0}}
+  - {name: r, radius: 1, mass: 1, mu: 0, force_max: 1, start: {x: 0, y: 0}, target: {x: 1}}
 )";
   const Scene s = parse_scene(text, kFile);
   EXPECT_DOUBLE_EQ(s.gravity, 9.81);
@@ -243,7 +243,7 @@ TEST(SceneYaml, OverridesCreateSectionsAndAppend) {
   const char* text = R"(scenario: one
 steps: 3
 robots:
-  - {name: r, radius: 1, mass: 1, mu: 0, force_max: 1, start: {x: 0, y: 0}}
+  - {name: r, radius: 1, mass: 1, mu: 0, force_max: 1, start: {x: 0, y: 0}, target: {x: 1}}
 )";
   const Scene s = parse_scene(
       text, kFile,

@@ -763,8 +763,8 @@ TEST(SolutionFile, AvoidSceneMatchesThePhysicsInSiUnits) {
 }
 
 TEST(SolutionFile, SceneWithoutSolutionHasStatusAndNullTrajectories) {
-  // Two robots with the same target point (avoid pairs): no feasible point exists.
-  const Written w = solve_and_write(model_test::kSameTargetScene, "same_target");
+  // A robot that cannot reach its phi target (damping stops its spin short): no feasible point.
+  const Written w = solve_and_write(model_test::kSpinShortScene, "spin_short");
   EXPECT_FALSE(w.run.solved());
   EXPECT_EQ(w.run.z.size(), 0);
   const json& doc = w.read;
@@ -774,7 +774,7 @@ TEST(SolutionFile, SceneWithoutSolutionHasStatusAndNullTrajectories) {
   ASSERT_TRUE(doc.contains("status_detail")) << "status_detail is documented when not solved";
   EXPECT_TRUE(doc["status_detail"].is_string());
   const std::string detail = doc["status_detail"].get<std::string>();
-  std::printf("same_target: status %s, status_detail %s\n", doc["status"].dump().c_str(), detail.c_str());
+  std::printf("spin_short: status %s, status_detail %s\n", doc["status"].dump().c_str(), detail.c_str());
   EXPECT_TRUE(detail == "infeasible" || detail == "elastic_not_tight" || detail == "failed")
       << "undocumented status_detail '" << detail << "'";
   has_null(doc, "T_f", "doc");

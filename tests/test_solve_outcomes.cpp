@@ -4,14 +4,15 @@
 
 #include "core/config/solver_settings.h"
 #include "core/model/scene_yaml.h"
+#include "core/util/errors.h"
 #include "search/solve_scene.h"
 #include "tests/test_support_model.h"
 
 namespace disco {
 namespace {
 
-TEST(SolveOutcomes, TwoRobotsWithTheSameTargetAreInfeasible) {
-  const Scene scene = parse_scene(model_test::kSameTargetScene, "same_target.yaml");
+TEST(SolveOutcomes, ASpinningRobotThatDampingStopsShortOfItsPhiTargetIsInfeasible) {
+  const Scene scene = parse_scene(model_test::kSpinShortScene, "spin_short.yaml");
   const SceneSolve run = solve_scene(scene, Settings::load(default_settings_path()));
   EXPECT_FALSE(run.solved());
   EXPECT_EQ(run.info.status, "infeasible");
@@ -24,9 +25,11 @@ TEST(SolveOutcomes, TwoRobotsWithTheSameTargetAreInfeasible) {
   EXPECT_EQ(run.problem->options().horizon_max, run.result.solves[2].bound);
 }
 
-TEST(SolveOutcomes, ForceAxisThatCannotReachTheTargetIsNotSolved) {
-  // D_ef = 1 along x, target off the x axis: no force can move the robot in y.
-  const Scene scene = parse_scene(R"(
+TEST(SolveOutcomes, ForceAxisThatCannotReachTheTargetIsRejectedBeforeSolving) {
+  // D_ef = 1 along x, target off the x axis: no force can move the robot in y, and the scene
+  // says so before any solve (core/model/reachability.h).
+  try {
+    parse_scene(R"(
 scenario: off_axis
 steps: 10
 robots:
@@ -40,10 +43,13 @@ robots:
     start: {x: 0, y: 0}
     target: {x: 3, y: 1, vx: 0, vy: 0}
 )",
-                                  "off_axis.yaml");
-  const SceneSolve run = solve_scene(scene, Settings::load(default_settings_path()));
-  EXPECT_FALSE(run.solved());
-  EXPECT_EQ(run.info.status, "infeasible");
+                "off_axis.yaml");
+    FAIL() << "an off-axis target was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("off_axis.yaml:13: key 'robots[0].target': unreachable: robot 'a'"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

@@ -16,15 +16,17 @@
 
 namespace disco::model_test {
 
-// Two robots whose targets are the same point: no feasible point exists.
-inline constexpr const char* kSameTargetScene = R"(
-scenario: same_target
+// A lone robot spinning at the start (omega 0.1 rad/s) that must end at phi = 1 rad: damping
+// stops it 0.025 rad on (omega_0 I / (sigma_d M g)), so no feasible point exists at any
+// horizon, for a reason the input checks do not cover (core/model/reachability.h).
+inline constexpr const char* kSpinShortScene = R"(
+scenario: spin_short
 steps: 10
 defaults: {radius: 0.5, mass: 1.0, mu: 0.2, force_max: 5.0, K: 8}
 robots:
   - name: a
-    start: {x: 0, y: 0}
-    target: {x: 3, y: 0, vx: 0, vy: 0}
+    start: {x: 0, y: 0, omega: 0.1}
+    target: {x: 2, y: 2, phi: 1.0, vx: 0, vy: 0}
   - name: b
     start: {x: 0, y: 3}
     target: {x: 3, y: 0, vx: 0, vy: 0}

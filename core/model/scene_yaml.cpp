@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/config/yaml_nodes.h"
+#include "core/model/reachability.h"
 #include "core/util/errors.h"
 
 namespace disco {
@@ -546,6 +547,22 @@ void check_start_clearance(const Doc& doc, const YAML::Node& robots_node, const 
   }
 }
 
+// A scene must ask for something, and nothing it asks for may be out of reach for a reason
+// the scene alone shows (core/model/reachability.h).
+void check_targets(const Doc& doc, const YAML::Node& robots_node, const Scene& scene) {
+  if (!has_any_target(scene))
+    doc.fail(robots_node, "robots",
+             "no robot has a target (every target is missing or unbounded), so there is nothing "
+             "to reach and T_f would be 0; give at least one robot a target");
+  const std::vector<Unreachable> bad = unreachable_targets(scene);
+  if (bad.empty()) return;
+  const Unreachable& u = bad.front();
+  const YAML::Node robot = robots_node[u.robot];
+  const YAML::Node target = robot["target"];
+  doc.fail(target.IsDefined() ? target : robot, child(item("robots", u.robot), "target"),
+           "unreachable: " + u.reason);
+}
+
 Scene validate(const Doc& doc, const YAML::Node& root, const std::string& source) {
   const auto fields = doc.mapping(root, "", kRootKeys, false);
   auto required = [&](const std::string& key) -> const YAML::Node& {
@@ -576,6 +593,7 @@ Scene validate(const Doc& doc, const YAML::Node& root, const std::string& source
   const YAML::Node pairs = pairs_it == fields.end() ? YAML::Node() : pairs_it->second;
   scene.pairs = read_pairs(doc, pairs, scene.robots);
   check_start_clearance(doc, robots_node, scene);
+  check_targets(doc, robots_node, scene);
   return scene;
 }
 

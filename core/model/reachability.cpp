@@ -1,0 +1,146 @@
+#include "core/model/reachability.h"
+
+#include <spdlog/fmt/fmt.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <utility>
+
+namespace disco {
+namespace {
+
+constexpr double kTol = 1e-12;  // relative, as the parser's start-overlap checks
+
+// The range of a x + b y over the box [lo_x, hi_x] x [lo_y, hi_y] (bounds may be infinite).
+std::pair<double, double> range(double a, double b, double lo_x, double hi_x, double lo_y, double hi_y) {
+  auto term = [](double c, double lo, double hi) -> std::pair<double, double> {
+    if (c == 0.0) return {0.0, 0.0};
+    const double p = c * lo, q = c * hi;
+    return {std::min(p, q), std::max(p, q)};
+  };
+  const auto [l1, h1] = term(a, lo_x, hi_x);
+  const auto [l2, h2] = term(b, lo_y, hi_y);
+  return {l1 + l2, h1 + h2};
+}
+
+bool outside(double v, std::pair<double, double> r) {
+  const double tol = kTol * (1.0 + std::abs(v));
+  return v < r.first - tol || v > r.second + tol;
+}
+
+std::string interval(double lo, double hi) {
+  if (lo == hi) return fmt::format("= {:g}", lo);
+  return fmt::format("in [{:g}, {:g}]", lo, hi);
+}
+
+bool has_contact_pair(const Scene& scene, int r) {
+  for (const Pair& p : scene.pairs)
+    if (p.mode == PairMode::kContact && (p.i == r || p.j == r)) return true;
+  return false;
+}
+
+// The friction polygon (vertices at 2 pi k / K) is symmetric about the line along `u`.
+bool polygon_symmetric_about(const Robot& rb, double ux, double uy) {
+  if (rb.mu == 0.0) return true;
+  const double steps = std::atan2(uy, ux) * rb.friction_edges / std::numbers::pi;
+  return std::abs(steps - std::round(steps)) < 1e-9;
+}
+
+std::string who(const Scene& scene, int r) { return "robot '" + scene.robots[r].name + "'"; }
+
+void off_axis(const Scene& scene, int r, std::vector<Unreachable>& out) {
+  const Robot& rb = scene.robots[r];
+  const double ux = rb.force_axis[0], uy = rb.force_axis[1];
+  const double nx = -uy, ny = ux;  // across the axis
+  const State& s = rb.start;
+  if (rb.force_dims != 1 || has_contact_pair(scene, r) || nx * s[kVx] + ny * s[kVy] != 0.0 ||
+      !polygon_symmetric_about(rb, ux, uy))
+    return;
+  const auto& lo = rb.target.lower;
+  const auto& hi = rb.target.upper;
+  const std::string why = fmt::format(
+      "{} is driven along its force_axis ({:g}, {:g}) only, and nothing can push it (no contact "
+      "pair) nor drive it across that axis (floor friction only opposes motion)",
+      who(scene, r), ux, uy);
+  const double c = nx * s[kX] + ny * s[kY];
+  if (outside(c, range(nx, ny, lo[kX], hi[kX], lo[kY], hi[kY]))) {
+    std::string stays, needs;
+    if (ny == 0.0) {
+      stays = fmt::format("x stays at its start {:g} m", s[kX]);
+      needs = "x " + interval(lo[kX], hi[kX]);
+    } else if (nx == 0.0) {
+      stays = fmt::format("y stays at its start {:g} m", s[kY]);
+      needs = "y " + interval(lo[kY], hi[kY]);
+    } else {
+      stays = fmt::format("it stays on the line through its start ({:g}, {:g}) along that axis",
+                          s[kX], s[kY]);
+      needs = "x " + interval(lo[kX], hi[kX]) + ", y " + interval(lo[kY], hi[kY]) +
+              ", which misses that line";
+    }
+    out.push_back({Unreachable::Rule::kOffAxis, r, -1,
+                   why + ", so " + stays + "; its target needs " + needs});
+  }
+  if (outside(0.0, range(nx, ny, lo[kVx], hi[kVx], lo[kVy], hi[kVy])))
+    out.push_back({Unreachable::Rule::kOffAxis, r, -1,
+                   why + ", so its velocity across the axis stays 0; its target needs vx " +
+                       interval(lo[kVx], hi[kVx]) + ", vy " + interval(lo[kVy], hi[kVy])});
+}
+
+void no_turn(const Scene& scene, int r, std::vector<Unreachable>& out) {
+  const Robot& rb = scene.robots[r];
+  if (has_contact_pair(scene, r) || rb.start[kOmega] != 0.0) return;
+  const std::string why = who(scene, r) +
+                          " cannot turn: nothing touches it (no contact pair), its force acts at "
+                          "its centre and the floor's only torque is the damping -sigma_d M g omega";
+  const auto& lo = rb.target.lower;
+  const auto& hi = rb.target.upper;
+  if (outside(rb.start[kPhi], {lo[kPhi], hi[kPhi]}))
+    out.push_back({Unreachable::Rule::kNoTurn, r, -1,
+                   fmt::format("{}, so phi stays at its start {:g} rad; its target needs phi {}", why,
+                               rb.start[kPhi], interval(lo[kPhi], hi[kPhi]))});
+  if (outside(0.0, {lo[kOmega], hi[kOmega]}))
+    out.push_back({Unreachable::Rule::kNoTurn, r, -1,
+                   why + ", so omega stays 0; its target needs omega " + interval(lo[kOmega], hi[kOmega])});
+}
+
+void overlap(const Scene& scene, const Pair& p, std::vector<Unreachable>& out) {
+  const Robot& a = scene.robots[p.i];
+  const Robot& b = scene.robots[p.j];
+  const auto& la = a.target.lower;
+  const auto& ha = a.target.upper;
+  const auto& lb = b.target.lower;
+  const auto& hb = b.target.upper;
+  const double dx = std::max(std::abs(hb[kX] - la[kX]), std::abs(ha[kX] - lb[kX]));
+  const double dy = std::max(std::abs(hb[kY] - la[kY]), std::abs(ha[kY] - lb[kY]));
+  const double farthest = std::hypot(dx, dy);
+  const bool avoid = p.mode == PairMode::kAvoid;
+  const double needed = a.radius + b.radius + (avoid ? p.safe_distance : 0.0);
+  if (!(farthest < needed * (1.0 - kTol))) return;
+  out.push_back({Unreachable::Rule::kOverlap, p.j, p.i,
+                 fmt::format("robots '{}' and '{}' ({} pair): their targets keep their centres at "
+                             "most {:g} m apart, less than R_i + R_j{} = {:g} m",
+                             a.name, b.name, avoid ? "an avoid" : "a contact", farthest,
+                             avoid ? " + safe_distance" : "", needed)});
+}
+
+}  // namespace
+
+std::vector<Unreachable> unreachable_targets(const Scene& scene) {
+  std::vector<Unreachable> out;
+  for (int r = 0; r < static_cast<int>(scene.robots.size()); ++r) {
+    off_axis(scene, r, out);
+    no_turn(scene, r, out);
+  }
+  for (const Pair& p : scene.pairs) overlap(scene, p, out);
+  return out;
+}
+
+bool has_any_target(const Scene& scene) {
+  for (const Robot& rb : scene.robots)
+    for (int c = 0; c < kStateSize; ++c)
+      if (std::isfinite(rb.target.lower[c]) || std::isfinite(rb.target.upper[c])) return true;
+  return false;
+}
+
+}  // namespace disco

@@ -1,0 +1,44 @@
+// disco — targets a scene makes unreachable for a reason visible in the scene itself, found
+// before any solve (scene files are checked by core/model/scene_yaml.cpp, which reports the
+// first of these as an InputError naming the robot's target).
+//
+// Each rule holds for every horizon, so a scene it flags has no feasible point at all:
+//  * kOffAxis: a robot with force_dims 1 and no contact pair (nothing can push it), at rest
+//    across its axis at the start, whose friction polygon is symmetric about its axis (mu = 0,
+//    or the axis at a multiple of pi/K): across the axis the floor friction never pushes (by
+//    the symmetry, maximum dissipation picks a vertex on the side opposite to any sideways
+//    velocity, so none can start), so the robot stays on the line through its start along the
+//    axis, with no velocity across it (Section III-A.1, Appendix A). A target box that misses
+//    that line, or a velocity box that excludes every velocity along the axis, is unreachable.
+//  * kNoTurn: a robot with no contact pair, at rest in rotation (omega = 0) at the start: its
+//    force acts at its centre and the floor's only torque is the damping -sigma_d M g omega,
+//    so omega stays 0 and phi stays at its start. A phi target without the start's phi, or an
+//    omega target without 0, is unreachable.
+//  * kOverlap: two robots whose target boxes keep their centres closer than the pair allows
+//    at T_f: R_i + R_j + safe_distance (avoid pair) or R_i + R_j (contact pair).
+// Not covered (the solve reports them as infeasible): anything that depends on the dynamics
+// over time, e.g. a robot spinning at the start whose damping stops it short of its phi target.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/model/scene.h"
+
+namespace disco {
+
+struct Unreachable {
+  enum class Rule { kOffAxis, kNoTurn, kOverlap };
+  Rule rule;
+  int robot = 0;   // the robot whose target is unreachable (for kOverlap, the second robot)
+  int other = -1;  // kOverlap: the first robot of the pair
+  std::string reason;  // a sentence naming the robots, the quantities and the rule
+};
+
+// Every unreachable target of `scene`, robots in order, then pairs.
+std::vector<Unreachable> unreachable_targets(const Scene& scene);
+
+// True when some robot's target bounds at least one state component.
+bool has_any_target(const Scene& scene);
+
+}  // namespace disco
