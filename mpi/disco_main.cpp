@@ -236,7 +236,8 @@ int run_solve(const SolveOptions& o) {
                                : std::string(),
                  run.info.certificate.max_violation, run.info.certificate.max_complementarity);
   } else {
-    spdlog::warn("no certified solution: status {}", run.info.status);
+    const std::string where = violations_text(run.info.violations);
+    spdlog::warn("no certified solution: status {}{}", run.info.status, where.empty() ? "" : "; " + where);
   }
   spdlog::info("{} NLP solves, {} iterations, {:.3f} s; wrote {}", run.info.nlp_solves,
                run.info.iterations, run.info.wall_s, path);

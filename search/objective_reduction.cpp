@@ -275,6 +275,7 @@ ReductionResult reduce_objective(RobotProblem& problem, const ElasticSolver& sol
         out.status = r.status == MpccStatus::kElasticNotTight ? MpccStatus::kInfeasible : r.status;
         o.solved = r.solved();
         run.record(s.phase, T, r, o.solved);
+        if (!o.solved) out.last_attempt = r.z;
         if (o.solved) {
           out.found = true;
           run.take_best(MpccResult(r));

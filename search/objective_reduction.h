@@ -153,6 +153,7 @@ struct ReductionResult {
   MpccStatus status = MpccStatus::kFailed;  // kSolved if found; else kInfeasible or kFailed
   std::string feasibility_detail;           // the last feasibility solve's own status; when
                                             // kFailed with Ipopt's, "failed (Ipopt: NAME)"
+  Vector last_attempt;  // when none is found: the point the last feasibility solve ended at
   double T_best = 0.0;       // s
   MpccResult best;           // the certified solve that gave T_best
   Stationarity stationarity = Stationarity::kFeasible;  // of best

@@ -146,6 +146,8 @@ StartOutcome run_start(const Scene& scene, const Settings& settings, const Start
       out.T_f = r.T_best;
     } else {
       out.detail = r.feasibility_detail;
+      if (const std::string where = violations_text(run.info.violations); !where.empty())
+        out.detail += "; " + where;
     }
     // Cut short: the reduction ended on the clock, not by its own rules.
     if (interrupt_requested()) {

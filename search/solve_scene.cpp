@@ -59,6 +59,7 @@ SceneSolve solve_scene(const Scene& scene, const Settings& settings, const Start
   } else if (!out.result.solves.empty()) {
     out.info.detail = out.result.feasibility_detail;
     out.info.certificate = out.result.solves.back().certificate;
+    out.info.violations = problem.violations(out.result.last_attempt, start.elastic.violation_tol);
   }
   out.info.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;

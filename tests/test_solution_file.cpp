@@ -795,6 +795,49 @@ TEST(SolutionFile, SceneWithoutSolutionHasStatusAndNullTrajectories) {
   ASSERT_EQ(doc["pairs"].size(), 1u);
   for (const char* k : {"distance", "normal_force", "tangential_force"})
     has_null(doc["pairs"][0], k, "pairs[0]");
+  // Where the last attempt broke the model: robot a's rotation (its phi target is out of
+  // reach), not robot b, which can reach its own target.
+  ASSERT_TRUE(doc.contains("violations") && doc["violations"].is_array() && !doc["violations"].empty())
+      << "violations are documented when not solved";
+  const json& worst = doc["violations"][0];
+  EXPECT_EQ(worst.value("owner", ""), "robot 'a'") << doc["violations"].dump();
+  EXPECT_EQ(worst.value("family", "").rfind("rotation", 0), 0u) << doc["violations"].dump();
+  EXPECT_GT(worst.value("amount", 0.0), 1e-6);
+  for (const json& v : doc["violations"]) EXPECT_NE(v.value("owner", ""), "robot 'b'") << v.dump();
+}
+
+TEST(SolutionFile, ViolationsNameTheRobotAndTheFamilyOfEveryBrokenRowAndTarget) {
+  const Written w = solve_and_write(kAvoidScene, "swap_avoid_violations");
+  ASSERT_TRUE(w.run.solved());
+  EXPECT_FALSE(w.read.contains("violations")) << "a solved file has none";
+  const RobotProblem& problem = *w.run.problem;
+  const double tol = 1e-6;
+  EXPECT_TRUE(problem.violations(w.run.z, tol).empty()) << "a certified point breaks nothing";
+  // Move robot 'right' (index 1) at step 5 by 0.1 (model units) in x: only its kinematics
+  // rows (and the gap rows of its pair) can break; robot 'left' stays clean.
+  Vector z = w.run.z;
+  const int x5 = problem.layout().state_index(1, 5, kX);
+  ASSERT_GE(x5, 0);
+  z[x5] += 0.1;
+  const auto v = problem.violations(z, tol);
+  ASSERT_FALSE(v.empty());
+  bool kinematics = false;
+  for (const auto& e : v) {
+    EXPECT_TRUE(e.owner == "robot 'right'" || e.owner == "pair ('left', 'right')") << e.owner << " " << e.family;
+    kinematics = kinematics || (e.owner == "robot 'right'" && e.family == "kinematics");
+  }
+  EXPECT_TRUE(kinematics);
+  // Its final x outside the target (x = 0): "target".
+  z = w.run.z;
+  const int xN = problem.layout().state_index(1, problem.scene().steps, kX);
+  ASSERT_GE(xN, 0);
+  z[xN] += 0.25;
+  bool target = false;
+  for (const auto& e : problem.violations(z, tol))
+    target = target || (e.owner == "robot 'right'" && e.family == "target" && std::abs(e.amount - 0.25) < 1e-12);
+  EXPECT_TRUE(target);
+  EXPECT_NE(violations_text(problem.violations(z, tol)).find("robot 'right' target 2.5e-01"), std::string::npos)
+      << violations_text(problem.violations(z, tol));
 }
 
 TEST(SolutionFile, ProvenanceNamesTheInputsWithTheirHashesAndTheVersion) {

@@ -14,7 +14,8 @@ void add_contact_friction(Layout& L, PolynomialProgram& P) {
     const Affine slip = L.alpha1(p, t) - L.alpha2(p, t);
 
     // v_T + gamma and -v_T + gamma.
-    const int r1 = P.add_row(-kInf, kInf), r2 = P.add_row(-kInf, kInf);
+    const int tag = L.pair_row_tag("contact friction", p);
+    const int r1 = P.add_row(-kInf, kInf, tag), r2 = P.add_row(-kInf, kInf, tag);
     for (int sign : {1, -1}) {
       const int r = sign > 0 ? r1 : r2;
       for (int a = 0; a < 2; ++a) {
@@ -28,7 +29,7 @@ void add_contact_friction(Layout& L, PolynomialProgram& P) {
     P.add_pair(ComplementaritySide::variable(L.alpha2_index(p, t)), ComplementaritySide::row(r2));
 
     // mu c_n - alpha_1 - alpha_2.
-    const int r3 = P.add_row(-kInf, kInf);
+    const int r3 = P.add_row(-kInf, kInf, tag);
     P.add(r3, 1.0, pr.mu * L.normal_force(p, t) - L.alpha1(p, t) - L.alpha2(p, t));
     P.add_pair(ComplementaritySide::variable(L.contact_gamma_index(p, t)),
                ComplementaritySide::row(r3));

@@ -13,12 +13,12 @@ void add_floor_friction(Layout& L, PolynomialProgram& P) {
     if (!L.has_floor_friction(i)) return;
     const Robot& rb = s.robots[i];
     const int K = rb.friction_edges;
-    const int budget = P.add_row(-kInf, kInf);  // mu M g - sum_k beta_k
+    const int budget = P.add_row(-kInf, kInf, L.robot_row_tag("floor friction", i));  // mu M g - sum_k beta_k
     P.add(budget, 1.0, Affine(rb.mu * rb.mass * s.gravity));
     for (int k = 0; k < K; ++k) {
       const double angle = 2.0 * std::numbers::pi * k / K;
       const double d[2] = {std::cos(angle), std::sin(angle)};
-      const int r = P.add_row(-kInf, kInf);  // d_k . v^{t+1} + gamma
+      const int r = P.add_row(-kInf, kInf, L.robot_row_tag("floor friction", i));  // d_k . v^{t+1} + gamma
       P.add(r, d[0], L.state(i, t + 1, kVx));
       P.add(r, d[1], L.state(i, t + 1, kVy));
       P.add(r, 1.0, L.floor_gamma(i, t));

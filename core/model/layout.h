@@ -27,6 +27,7 @@
 #pragma once
 
 #include <array>
+#include <cstring>
 #include <vector>
 
 #include "core/model/adaptive.h"
@@ -110,6 +111,18 @@ class Layout {
   int momentum_row(int robot, int t, int axis) const;
   void set_momentum_row(int robot, int t, int axis, int row) { momentum_[robot][t][axis] = row; }
 
+  // Who a row belongs to, for reports (PolynomialProgram::add_row's tag): a family's name
+  // ("dynamics", "kinematics", ...) and a robot or a pair. row_tag() gives the same tag
+  // for the same owner; row_owner() reads it back.
+  struct RowOwner {
+    const char* family;
+    bool pair;  // index is a pair's, else a robot's
+    int index;
+  };
+  int robot_row_tag(const char* family, int robot) { return row_tag({family, false, robot}); }
+  int pair_row_tag(const char* family, int pair) { return row_tag({family, true, pair}); }
+  const RowOwner& row_owner(int tag) const { return owners_[tag]; }
+
  private:
   Affine contact_value(const std::vector<int>& index, int t) const {
     return index[t] >= 0 ? Affine::variable(index[t]) : Affine(0.0);
@@ -131,6 +144,16 @@ class Layout {
   std::vector<RobotVars> robots_;
   std::vector<PairVars> pairs_;
   std::vector<std::vector<std::array<int, 3>>> momentum_;
+  std::vector<RowOwner> owners_;  // by tag
+
+  int row_tag(const RowOwner& o) {
+    for (std::size_t k = 0; k < owners_.size(); ++k)
+      if (owners_[k].index == o.index && owners_[k].pair == o.pair &&
+          std::strcmp(owners_[k].family, o.family) == 0)
+        return static_cast<int>(k);
+    owners_.push_back(o);
+    return static_cast<int>(owners_.size()) - 1;
+  }
 };
 
 }  // namespace disco

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
 
 #include "core/model/avoidance.h"
@@ -261,6 +262,45 @@ Vector RobotProblem::transfer(const Vector& z, const RobotProblem& to) const {
       out[B.contact_gamma_index(p, t)] = std::abs(vT);
     }
   }
+  return out;
+}
+
+std::vector<RobotProblem::Violation> RobotProblem::violations(const Vector& z, double tolerance) const {
+  std::vector<Violation> out;
+  if (z.size() != program_.num_variables()) return out;
+  const Layout& L = *layout_;
+  std::map<std::pair<std::string, std::string>, double> worst;  // (owner, family) -> amount
+  auto note = [&](const std::string& owner, const std::string& family, double v) {
+    if (!(v > tolerance)) return;
+    double& w = worst[{owner, family}];
+    w = std::max(w, v);
+  };
+  auto robot = [&](int i) { return "robot '" + scene_.robots[i].name + "'"; };
+  Vector c(program_.num_constraints());
+  if (program_.constraints(z, c)) {
+    for (int r = 0; r < program_.num_constraints(); ++r) {
+      const int tag = program_.row_tag(r);
+      if (tag < 0) continue;
+      const double v = std::max({program_.constraint_lower()[r] - c[r], c[r] - program_.constraint_upper()[r], 0.0});
+      const Layout::RowOwner& o = L.row_owner(tag);
+      const std::string owner =
+          o.pair ? "pair ('" + scene_.robots[scene_.pairs[o.index].i].name + "', '" +
+                       scene_.robots[scene_.pairs[o.index].j].name + "')"
+                 : robot(o.index);
+      note(owner, o.family, v);
+    }
+  }
+  const int N = scene_.steps;
+  for (int i = 0; i < static_cast<int>(scene_.robots.size()); ++i)
+    for (int k = 0; k < kStateSize; ++k) {
+      const int v = L.state_index(i, N, k);
+      if (v < 0) continue;
+      note(robot(i), "target",
+           std::max({program_.variable_lower()[v] - z[v], z[v] - program_.variable_upper()[v], 0.0}));
+    }
+  for (const auto& [key, amount] : worst) out.push_back({key.first, key.second, amount});
+  std::stable_sort(out.begin(), out.end(),
+                   [](const Violation& a, const Violation& b) { return a.amount > b.amount; });
   return out;
 }
 

@@ -17,6 +17,7 @@
 
 #include <array>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/model/adaptive.h"
@@ -89,6 +90,16 @@ class RobotProblem {
   // gamma = |v_T| (core/model/contact_friction.h), phi = phi^0 and omega = 0. Certifying the result on
   // `to` checks the adaptive model's answer on the full model.
   Vector transfer(const Vector& z, const RobotProblem& to) const;
+
+  // Where a point breaks the model, for an infeasible result: per robot (or pair) and
+  // family, the largest violation of its rows (model units: the certificate's), and of the
+  // bounds on its state at T_f ("target"), largest first, those above `tolerance` only.
+  struct Violation {
+    std::string owner;   // "robot 'a'" or "pair ('a', 'b')"
+    std::string family;  // "dynamics", "kinematics", "gap", "target", ...
+    double amount = 0.0;
+  };
+  std::vector<Violation> violations(const Vector& z, double tolerance) const;
 
  private:
   void build();

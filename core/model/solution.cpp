@@ -1,5 +1,8 @@
 #include "core/model/solution.h"
 
+#include <spdlog/fmt/fmt.h>
+
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -34,6 +37,12 @@ json solution_json(const RobotProblem& problem, const Vector& z, const SolutionI
   doc["scenario"] = si.name;
   doc["status"] = info.status;
   if (!info.detail.empty()) doc["status_detail"] = info.detail;
+  if (info.status != "solved") {
+    json v = json::array();
+    for (const auto& w : info.violations)
+      v.push_back({{"owner", w.owner}, {"family", w.family}, {"amount", w.amount}});
+    doc["violations"] = v;
+  }
   if (!info.stationarity.empty()) doc["stationarity"] = info.stationarity;
   doc["T_f"] = has ? json(problem.horizon(z)) : json(nullptr);
   doc["N_t"] = N;
@@ -175,6 +184,15 @@ json provenance_json(const Provenance& p, const Settings& settings) {
           {"settings_file", settings.source()},
           {"settings_sha256", sha256_hex(settings.canonical_text())},
           {"version", disco_version()}};
+}
+
+std::string violations_text(const std::vector<RobotProblem::Violation>& v, std::size_t most) {
+  if (v.empty()) return "";
+  std::string text = "at the last attempt, the largest violations (model units): ";
+  for (std::size_t k = 0; k < std::min(most, v.size()); ++k)
+    text += fmt::format("{}{} {} {:.1e}", k ? ", " : "", v[k].owner, v[k].family, v[k].amount);
+  if (v.size() > most) text += fmt::format(" and {} more", v.size() - most);
+  return text;
 }
 
 void write_json_file(const std::string& path, const json& doc) {

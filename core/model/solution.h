@@ -1,7 +1,8 @@
 // disco — the solution file (solution.json), in SI units.
 //
 // Schema (documented for users in README.md, "The solution file"):
-//   scenario, status, status_detail (when not solved), T_f, N_t, h,
+//   scenario, status, status_detail (when not solved), violations (when not solved: [{owner,
+//   family, amount}], RobotProblem::violations at the last feasibility attempt), T_f, N_t, h,
 //   time (N_t + 1 values: t_k = k h, 0 to T_f; null without a solution), g, lower_bound (or null),
 //   model {variables, constraints, complementarity_pairs},
 //   certificate {max_violation, max_complementarity, complementarity_product, units},
@@ -40,6 +41,9 @@ struct SolutionInfo {
   std::string status;  // "solved", "infeasible", "failed"
   std::string detail;  // when not solved: the last feasibility solve's own status
   std::string stationarity;  // when solved: what the point is known to be for min T_f
+  // When not solved: where the last feasibility attempt's point breaks the model, largest
+  // first (RobotProblem::violations).
+  std::vector<RobotProblem::Violation> violations;
   Certificate certificate;
   double wall_s = 0.0;
   int nlp_solves = 0, iterations = 0;
@@ -61,6 +65,11 @@ struct Provenance {
 // `p` with the scene file's SHA-256 (InputError if it cannot be read), the settings' file and
 // SHA-256, and disco's version: the file's "provenance".
 nlohmann::json provenance_json(const Provenance& p, const Settings& settings);
+
+// "at the last attempt, the largest violations (model units): robot 'a' rotation kinematics
+// 3.1e-01, ..." for the `most` largest; "" when there are none.
+std::string violations_text(const std::vector<RobotProblem::Violation>& violations,
+                            std::size_t most = 3);
 
 // Writes JSON to `path` atomically (temporary file, then rename).
 void write_json_file(const std::string& path, const nlohmann::json& doc);

@@ -44,7 +44,7 @@ int PolynomialProgram::add_variable(double lo, double hi, double initial) {
   return k;
 }
 
-int PolynomialProgram::add_row(double lo, double hi) {
+int PolynomialProgram::add_row(double lo, double hi, int tag) {
   DISCO_CHECK(!finalized_, "add_row after finalize");
   DISCO_CHECK(lo <= hi, "row bounds lo > hi");
   const int r = num_constraints();
@@ -52,6 +52,7 @@ int PolynomialProgram::add_row(double lo, double hi) {
   c_hi_.conservativeResize(r + 1);
   c_lo_[r] = lo;
   c_hi_[r] = hi;
+  row_tags_.push_back(tag);
   building_.emplace_back();
   constant_.push_back(0.0);
   return r;

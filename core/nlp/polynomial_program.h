@@ -56,7 +56,9 @@ class PolynomialProgram : public Mpcc {
 
   // --- building (before finalize) ---------------------------------------
   int add_variable(double lo, double hi, double initial = 0.0);
-  int add_row(double lo, double hi);
+  // `tag` (>= 0, or -1 for none) names who the row belongs to, for reports (row_tag).
+  int add_row(double lo, double hi, int tag = -1);
+  int row_tag(int r) const { return row_tags_[r]; }
   // Adds coef * a (* b (* c)) to row r (or to the objective, r = kObjective).
   void add(int r, double coef, const Affine& a);
   void add(int r, double coef, const Affine& a, const Affine& b);
@@ -102,6 +104,7 @@ class PolynomialProgram : public Mpcc {
   std::vector<Monomial> objective_;
   double objective_constant_ = 0.0;
   std::vector<double> constant_;  // per row; after finalize, index m = objective
+  std::vector<int> row_tags_;     // per row (add_row's tag)
 
   // Compiled rows: monomials of row r are [row_begin_[r], row_begin_[r+1]); row m = objective.
   std::vector<int> row_begin_;
