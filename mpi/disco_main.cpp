@@ -224,7 +224,7 @@ int run_solve(const SolveOptions& o) {
   if (interrupt_requested()) {
     spdlog::warn("interrupted: the solve stopped early; {} holds its best point so far{}", path,
                  run.solved() ? fmt::format(" (T_f = {:.6f} s, certified)", run.T_f())
-                              : std::string(" (none: status ") + run.info.status + ")");
+                              : " (none: status " + to_string(run.info.status) + ")");
     return interrupted_exit_code();
   }
   const auto lb = run.problem->lower_bound();
@@ -237,7 +237,7 @@ int run_solve(const SolveOptions& o) {
                  run.info.certificate.max_violation, run.info.certificate.max_complementarity);
   } else {
     const std::string where = violations_text(run.info.violations);
-    spdlog::warn("no certified solution: status {}{}", run.info.status, where.empty() ? "" : "; " + where);
+    spdlog::warn("no certified solution: status {}{}", to_string(run.info.status), where.empty() ? "" : "; " + where);
   }
   spdlog::info("{} NLP solves, {} iterations, {:.3f} s; wrote {}", run.info.nlp_solves,
                run.info.iterations, run.info.wall_s, path);

@@ -12,6 +12,7 @@
 #include "core/config/solver_settings.h"
 #include "core/util/check.h"
 #include "core/util/errors.h"
+#include "search/guess.h"
 #include "core/util/numbers.h"
 #include "search/reduction_phases.h"
 
@@ -67,8 +68,8 @@ struct Reduction {
       problem.limit_horizon(q.seconds);
     return solver.solve(problem.program(), from, request(q.iteration_limit));
   }
-  void record(const std::string& phase, double bound, const MpccResult& r, bool improved) {
-    SolveRecord rec{phase, bound, problem.horizon(r.z), r.status, r.outcome, r.ipopt_status,
+  void record(SolveKind kind, double bound, const MpccResult& r, bool improved) {
+    SolveRecord rec{kind, bound, problem.horizon(r.z), r.status, r.outcome, r.ipopt_status,
                     r.certificate, r.nlp_solves, r.iterations, r.seconds, improved};
     out.solves.push_back(rec);
     out.nlp_solves += r.nlp_solves;
@@ -76,7 +77,7 @@ struct Reduction {
     if (on_solve) on_solve(rec);
   }
   void record(Phase phase, double bound, const MpccResult& r, bool improved) {
-    record(to_string(phase), bound, r, improved);
+    record(solve_kind(phase), bound, r, improved);
   }
   // `r` (certified, T_f below the best so far) becomes the best point. `minimum`: r is a
   // converged minimisation under T_f <= bound (elastic, or a branch descent that ended
@@ -102,7 +103,7 @@ struct Reduction {
     const double bound = out.T_best;
     MpccResult r = step({Horizon::kBound, bound, iteration_limit}, out.best);
     const bool improved = r.solved() && problem.horizon(r.z) < bound;
-    record("minimize", bound, r, improved);
+    record(SolveKind::kMinimize, bound, r, improved);
     const bool converged = r.solved();
     if (improved) take_best(std::move(r), converged, bound);
     return converged;
@@ -115,7 +116,7 @@ struct Reduction {
     MpccResult r =
         solver.solve_branch(problem.program(), from, cfg.flip_rounds, request(0));
     const bool improved = r.solved() && problem.horizon(r.z) < bound * (1.0 - kBetter);
-    record("branch", bound, r, improved);
+    record(SolveKind::kBranch, bound, r, improved);
     if (improved) take_best(std::move(r), r.b_stationary, bound);
     return improved;
   }
@@ -124,7 +125,7 @@ struct Reduction {
   std::pair<MpccResult, bool> segment(const MpccResult& from, double bound) {
     MpccResult r = step({Horizon::kBound, bound, cfg.step_iterations}, from);
     const bool improved = r.solved() && problem.horizon(r.z) < out.T_best * (1.0 - kBetter);
-    record("minimize", bound, r, improved);
+    record(SolveKind::kMinimize, bound, r, improved);
     if (improved) take_best(MpccResult(r), true, bound);  // improved: converged
     return {std::move(r), improved};
   }
@@ -163,14 +164,6 @@ struct Reduction {
 };
 }  // namespace
 
-std::string to_string(Stationarity s) {
-  switch (s) {
-    case Stationarity::kFeasible: return "feasible";
-    case Stationarity::kStrong: return "strongly stationary";
-    case Stationarity::kB: return "B-stationary";
-  }
-  return "feasible";
-}
 
 ReductionSettings reduction_settings(const Settings& s) {
   ReductionSettings r;
@@ -215,6 +208,18 @@ double feasibility_horizon(const RobotProblem& problem, const ReductionSettings&
   return scale ? std::max(cfg.horizon_min, cfg.horizon_factor * *scale) : cfg.horizon_min;
 }
 
+std::string to_string(SolveKind kind) {
+  switch (kind) {
+    case SolveKind::kFeasibility: return "feasibility";
+    case SolveKind::kPerturbedFeasibility: return "perturbed feasibility";
+    case SolveKind::kReduction: return "reduction";
+    case SolveKind::kFixedStep: return "fixed step";
+    case SolveKind::kMinimize: return "minimize";
+    case SolveKind::kBranch: return "branch";
+  }
+  return "?";
+}
+
 std::string solve_log_header() {
   return fmt::format("{:>3} {:<11} {:>10} {:>10} {:<17} {:>9} {:>9} {:>4} {:>5} {:>7}", "#",
                      "phase", "bound[s]", "T_f[s]", "ended", "compl", "viol", "nlp", "iter",
@@ -241,7 +246,7 @@ std::string solve_log_line(int number, const SolveRecord& r) {
   const std::string words = solve_outcome_words(r.status, r.outcome);
   return fmt::format(
       "{:>3} {:<11} {:>10.5f} {:>10.5f} {:<17} {:>9.1e} {:>9.1e} {:>4} {:>5} {:>7.3f}{}", number,
-      r.phase, r.bound, r.T_f, words, r.certificate.max_complementarity,
+      to_string(r.kind), r.bound, r.T_f, words, r.certificate.max_complementarity,
       r.certificate.max_violation, r.nlp_solves, r.iterations, r.seconds,
       r.improved ? std::string("  *")
       : words == "failed" || words == "invalid number"
@@ -265,7 +270,7 @@ ReductionResult reduce_objective(RobotProblem& problem, const ElasticSolver& sol
       case Phase::kFeasibility: {  // 1. at a fixed, generous horizon (doubled per attempt)
         const double T = feasibility_horizon(problem, cfg) * std::pow(2.0, s.attempt);
         problem.set_horizon_max(T);
-        const Vector z0 = guess ? guess(T) : problem.straight_line_guess(T);
+        const Vector z0 = guess ? guess(T) : smoothstep_guess(problem, T);
         const MpccResult r = run.step({Horizon::kFixed, T, 0}, z0);
         // A failure says why: the outcome of the last NLP solve (invalid number: an
         // evaluation gave NaN or Inf, which the Nlp wrapper turns into a failed callback).

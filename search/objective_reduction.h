@@ -91,16 +91,6 @@ enum class Minimizer {
   kBranch,   // a descent by branches: elastic segments and branch descents (below)
 };
 
-// What the best point is known to be, for the problem min T_f (solution.json "stationarity").
-enum class Stationarity {
-  kFeasible,  // certified feasible: a step of the homotopy, no stationarity shown
-  kStrong,    // a converged elastic-mode minimisation with complementarity tight and the bound
-              // on T_f inactive: a KKT point of the elastic NLP at eps = 0, strongly stationary
-              // for the MPCC (paper Section IV)
-  kB,         // a branch descent that ended without a flip, the bound on T_f inactive: no
-              // biactive pair's fixed side has a negative multiplier, B-stationary
-};
-std::string to_string(Stationarity s);  // "feasible", "strongly stationary", "B-stationary"
 
 // The schedule; its values come from configs/disco.yaml (reduction_settings), so no
 // defaults are kept here.
@@ -118,10 +108,16 @@ struct ReductionSettings {
 };
 ReductionSettings reduction_settings(const Settings& settings);  // `feasibility:` + `reduction:`
 
+// What an elastic-mode solve of the reduction is (the solve log's "phase" column):
+// step 1, step 1b, a minimising step of step 2, a fixed step (or the probe below a local
+// optimum), a minimisation (step 3, or a segment of the kBranch minimiser), a branch descent.
+enum class SolveKind { kFeasibility, kPerturbedFeasibility, kReduction, kFixedStep, kMinimize, kBranch };
+// "feasibility", "perturbed feasibility", "reduction", "fixed step", "minimize", "branch".
+std::string to_string(SolveKind kind);
+
 // One elastic-mode solve (possibly several Ipopt solves inside), as the solve log shows it.
 struct SolveRecord {
-  std::string phase;   // "feasibility", "perturbed feasibility", "reduction", "fixed step" or
-                       // "minimize"
+  SolveKind kind = SolveKind::kFeasibility;
   double bound = 0.0;  // s: the fixed T_f (feasibility phases) or the upper bound on T_f
   double T_f = 0.0;    // s: at the solve's end
   MpccStatus status = MpccStatus::kFailed;
@@ -187,7 +183,7 @@ struct Perturbation {
 // horizon must not exceed the feasible point's.
 using PerturbFunction = std::function<Perturbation(const Vector& feasible)>;
 
-// `guess` defaults to RobotProblem::straight_line_guess; without `perturb`,
+// `guess` defaults to smoothstep_guess (search/guess.h); without `perturb`,
 // step 1b is skipped.
 ReductionResult reduce_objective(RobotProblem& problem, const ElasticSolver& solver,
                                  const ReductionSettings& settings, const GuessFunction& guess = {},

@@ -42,18 +42,18 @@ ReductionState with_phase(ReductionState s, Phase phase) {
 }
 }  // namespace
 
-std::string to_string(Phase phase) {
+SolveKind solve_kind(Phase phase) {
   switch (phase) {
-    case Phase::kFeasibility: return "feasibility";
-    case Phase::kPerturbed: return "perturbed feasibility";
-    case Phase::kMinimizingStep: return "reduction";
+    case Phase::kFeasibility: return SolveKind::kFeasibility;
+    case Phase::kPerturbed: return SolveKind::kPerturbedFeasibility;
+    case Phase::kMinimizingStep: return SolveKind::kReduction;
     case Phase::kFixedStep:
-    case Phase::kProbe: return "fixed step";
+    case Phase::kProbe: return SolveKind::kFixedStep;
     case Phase::kEarlyMinimize:
-    case Phase::kFinalMinimize: return "minimize";
-    case Phase::kDone: return "done";
+    case Phase::kFinalMinimize:
+    case Phase::kDone: return SolveKind::kMinimize;  // kDone runs no solve
   }
-  return "done";
+  return SolveKind::kMinimize;
 }
 
 std::string stop_line(StopReason reason, const ReductionSettings& cfg) {

@@ -31,7 +31,7 @@ enum class Phase {
   kFinalMinimize,   // step 3 once the loop ends
   kDone,
 };
-std::string to_string(Phase phase);  // the solve log's name: "feasibility", "fixed step", ...
+SolveKind solve_kind(Phase phase);  // what the phase's solve is, for the solve log
 
 // Why the loop ended, decided by the transition that ends it (a final minimisation may run
 // after the decision; it does not change the reason).

@@ -83,7 +83,7 @@ json StartOutcome::to_json() const {
           {"time_to_first_feasible", time_to_first_feasible},
           {"time_to_best", time_to_best},
           {"description", description},
-          {"guess", guess},
+          {"guess", to_string(guess)},
           {"schedule", schedule},
           {"history", history},
           {"rank", rank},
@@ -111,7 +111,7 @@ StartOutcome StartOutcome::from_json(const json& j) {
   o.time_to_first_feasible = j.value("time_to_first_feasible", -1.0);
   o.time_to_best = j.value("time_to_best", -1.0);
   o.description = j.value("description", "");
-  o.guess = j.value("guess", "");
+  o.guess = guess_kind_from_string(j.value("guess", "straight"));
   o.schedule = j.value("schedule", json::object());
   o.history = j.value("history", std::vector<std::array<double, 2>>{});
   o.rank = j.value("rank", 0);
@@ -128,7 +128,7 @@ StartOutcome run_start(const Scene& scene, const Settings& settings, const Start
   out.start = start.index;
   out.seed = start.seed;
   out.description = start.describe();
-  out.guess = to_string(start.guess);
+  out.guess = start.guess;
   out.schedule = start.schedule_json();
   out.budget = time_budget_s;
   out.budget_source = time_budget_s > 0 ? budget_source : BudgetSource::kNone;

@@ -62,7 +62,7 @@ struct StartOutcome {
   double seconds = 0.0;
   double time_to_first_feasible = -1.0, time_to_best = -1.0;  // s within the start
   std::string description;  // StartSpec::describe()
-  std::string guess;        // the initial guess's kind, to_string(GuessKind), e.g. "detour"
+  GuessKind guess = GuessKind::kStraight;  // the initial guess's kind ("guess": to_string)
   nlohmann::json schedule;  // StartSpec::schedule_json(): the reduction schedule and zeta
   // Every new best of the start: [seconds within the start, T_f] (ReductionResult::history).
   std::vector<std::array<double, 2>> history;

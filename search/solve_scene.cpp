@@ -4,13 +4,14 @@
 #include <chrono>
 
 #include "core/config/solver_settings.h"
+#include "search/guess.h"
 
 namespace disco {
 
 namespace {
 
 // The certificate of the best point z: on the model solved and, for the
-// adaptive model, on the full model too (core/model/adaptive.h), the worse of
+// adaptive model, on the full model too (core/model/model_plan.h), the worse of
 // the two. False if the full model does not certify it.
 bool certify_best(const Scene& scene, const RobotProblem& problem, const ElasticSettings& tol,
                   const Vector& z, Certificate& out) {
@@ -50,12 +51,12 @@ SceneSolve solve_scene(const Scene& scene, const Settings& settings, const Start
     out.result.status = MpccStatus::kFailed;
     out.result.feasibility_detail = "not certified on the full model";
   }
-  out.info.status = to_string(out.result.status);
+  out.info.status = out.result.status;
   out.info.nlp_solves = out.result.nlp_solves;
   out.info.iterations = out.result.iterations;
   if (out.result.found) {
     out.z = out.result.best.z;
-    out.info.stationarity = to_string(out.result.stationarity);
+    out.info.stationarity = out.result.stationarity;
   } else if (!out.result.solves.empty()) {
     out.info.detail = out.result.feasibility_detail;
     out.info.certificate = out.result.solves.back().certificate;

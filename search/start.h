@@ -8,17 +8,16 @@
 // seeded by (seed, scene name, index), so the same (scene, seed, index) gives
 // the same start on any rank, in any run.
 //
-// A kPerturbedFeasible start runs the feasibility phase from the straight-line
-// guess, then re-solves it once from a perturbation of the feasible point
-// (reduce_objective's PerturbFunction, step 1b in objective_reduction.h): each
-// robot's feasible path re-timed by a smooth monotone time warp, velocities
-// and the rest completed from the warped positions, at T_scale times the
-// feasible horizon. The reduction continues from that point if it is
+// The guess of each kind is made in search/guess.h (make_guess). A kPerturbedFeasible
+// start runs the feasibility phase from the smoothstep guess, then re-solves it once
+// from a perturbation of the feasible point (reduce_objective's PerturbFunction, step 1b
+// in objective_reduction.h); the reduction continues from that point if it is
 // certified, else from the feasible point itself.
 #pragma once
 
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <string>
 
 #include "core/elastic/elastic_solver.h"
@@ -28,20 +27,22 @@
 namespace disco {
 
 enum class GuessKind {
-  kStraight,   // smoothstep straight lines (RobotProblem::straight_line_guess); a robot too
-               // weak for the smoothstep moves on its own bang-bang timing (start.cpp)
+  kStraight,   // smoothstep straight lines; a robot too weak for the smoothstep moves on
+               // its own bang-bang timing (search/guess.h, straight_guess)
   kPerturbed,  // straight lines with random lateral and along-path perturbations
   kDetour,     // robots whose straight paths cross pass each other on one side
   kPerturbedFeasible,  // straight lines, then the feasible point re-timed and re-solved
   kYield,      // straight lines; in a random priority order, robots wait until the way is clear
 };
-std::string to_string(GuessKind kind);
+std::string to_string(GuessKind kind);  // "straight", "perturbed", "detour", "perturbed feasible", "yield"
+// The kind named by `text` (as to_string gives it); std::invalid_argument otherwise.
+GuessKind guess_kind_from_string(const std::string& text);
 
 struct StartSpec {
   int index = 0;
   std::uint64_t seed = 0;
   GuessKind guess = GuessKind::kStraight;
-  int detour_side = 0;            // kDetour: +1 left, -1 right (per crossing pair, see start.cpp)
+  int detour_side = 0;            // kDetour: +1 left, -1 right (per conflicting pair, search/guess.h)
   double perturbation = 0.0;      // kPerturbed: relative amplitude; kPerturbedFeasible: of the warp
   double T_scale = 1.0;           // kPerturbedFeasible: re-solve horizon / feasible horizon
   double margin = 1.0;            // kYield: clearance multiple kept from higher-priority robots
@@ -56,17 +57,16 @@ struct StartSpec {
 StartSpec make_start(const Scene& scene, std::uint64_t seed, int index,
                      const ReductionSettings& base_schedule, const ElasticSettings& base_elastic);
 
-// The initial guess of `start` for horizon `seconds` (model units inside).
-Vector make_guess(const RobotProblem& problem, const StartSpec& start, double seconds);
-
-// kPerturbedFeasible: the perturbation of the feasible point `feasible`
-// (model-unit z): its paths re-timed, completed by guess_from_paths, at
-// T_scale times its horizon. Deterministic in (start, feasible).
-Perturbation perturb_feasible(const RobotProblem& problem, const StartSpec& start,
-                              const Vector& feasible);
-// The PerturbFunction for reduce_objective: perturb_feasible for a
-// kPerturbedFeasible start, empty (no step 1b) for every other kind.
-// `problem` must outlive the function.
-PerturbFunction make_perturbation(const RobotProblem& problem, const StartSpec& start);
+// The generator of start `index` of `scene` under `seed`: a std::mt19937_64 (fully
+// specified by the standard) seeded with FNV-1a over (seed, scene name, index, stream).
+// Stream 0 draws the start's parameters (make_start), stream 1 the shape of its guess
+// (search/guess.h).
+std::mt19937_64 start_generator(std::uint64_t seed, const std::string& scene, int index,
+                                std::uint64_t stream);
+// Uniform in [0, 1) from the generator's top 53 bits, and in [lo, hi): made here, not by
+// std::uniform_real_distribution (implementation-defined), so a start is the same with any
+// standard library.
+double uniform01(std::mt19937_64& g);
+double uniform(std::mt19937_64& g, double lo, double hi);
 
 }  // namespace disco

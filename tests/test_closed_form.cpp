@@ -35,7 +35,7 @@ double solve_time(const Case& c, int steps, double* certificate_violation = null
   const std::string path = std::string(DISCO_SOURCE_DIR) + "/configs/scenarios/" + c.file;
   const Scene scene = load_scene(path, {"steps=" + std::to_string(steps)});
   const SceneSolve run = solve_scene(scene, Settings::load(default_settings_path()));
-  EXPECT_TRUE(run.solved()) << c.file << " N_t=" << steps << ": " << run.info.status;
+  EXPECT_TRUE(run.solved()) << c.file << " N_t=" << steps << ": " << to_string(run.info.status);
   if (certificate_violation) *certificate_violation = run.info.certificate.max_violation;
   if (certificate_complementarity)
     *certificate_complementarity = run.info.certificate.max_complementarity;

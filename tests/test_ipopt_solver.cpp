@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "core/ipopt/ipopt_solver.h"
+#include "core/util/check.h"
 #include "core/nlp/derivative_checker.h"
 #include "core/nlp/polynomial_program.h"
 #include "core/util/errors.h"
@@ -191,6 +192,39 @@ TEST(IpoptSolverSolve, Hs071ReachesItsKnownOptimum) {
   ASSERT_TRUE(again.converged());
   EXPECT_NEAR(again.objective, 17.0140173, 1e-6);
   EXPECT_LE(again.iterations, 2);
+}
+
+// Hs071 whose objective fails an internal check (a bug) from its `fail_at`-th evaluation on.
+class Hs071WithABug : public Hs071 {
+ public:
+  explicit Hs071WithABug(int fail_at) : fail_at_(fail_at) {}
+
+ private:
+  bool do_objective(const ConstVectorRef& x, double& f) const override {
+    DISCO_CHECK(++calls_ < fail_at_, "a bug met in the middle of a solve");
+    f = x[0] * x[3] * (x[0] + x[1] + x[2]) + x[2];
+    return true;
+  }
+  int fail_at_;
+  mutable int calls_ = 0;
+};
+
+TEST(IpoptSolverSolve, AFailedInternalCheckInACallbackIsRethrownAfterTheSolveNotHidden) {
+  // Not turned into a failed evaluation (which Ipopt would step around): the solve stops
+  // and the check's message reaches the caller, at the first evaluation and later on.
+  for (int fail_at : {1, 5}) {
+    const Hs071WithABug nlp(fail_at);
+    IpoptSolver solver(disco_yaml_ipopt_options());
+    NlpPoint start;
+    start.z = (Vector(4) << 1.0, 5.0, 5.0, 1.0).finished();
+    try {
+      solver.solve(nlp, start);
+      ADD_FAILURE() << "the solve returned; fail_at " << fail_at;
+    } catch (const InternalError& e) {
+      EXPECT_NE(std::string(e.what()).find("internal check failed at"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("a bug met in the middle of a solve"), std::string::npos);
+    }
+  }
 }
 
 // f = sqrt(x - 1) + x: NaN at the start x = 0.

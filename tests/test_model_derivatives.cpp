@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "search/guess.h"
 #include "core/config/settings.h"
 #include "core/config/solver_settings.h"
 #include "core/elastic/elastic_nlp.h"
@@ -132,7 +133,7 @@ Vector kink_point(const RobotProblem& rp, unsigned seed) {
   std::mt19937 rng(seed + 1000);
   std::uniform_real_distribution<double> tiny(-1e-7, 1e-7), pos(0.0, 1.0);
   const Layout& L = rp.layout();
-  const Scene& s = L.scene();
+  const Scene& s = L.model_scene();
   for (int i = 0; i < static_cast<int>(s.robots.size()); ++i) {
     for (int t = 1; t <= L.steps(); ++t)
       for (int c : {kVx, kVy, kOmega}) put(z, L.state_index(i, t, c), tiny(rng));
@@ -162,7 +163,7 @@ Vector contact_point(const RobotProblem& rp, unsigned seed) {
   std::uniform_real_distribution<double> u(-1.0, 1.0), angle(0.0, 2.0 * std::numbers::pi),
       force(0.5, 2.0), slip(0.0, 1.0);
   const Layout& L = rp.layout();
-  const Scene& s = L.scene();
+  const Scene& s = L.model_scene();
   const int nr = static_cast<int>(s.robots.size());
   constexpr double kGap = 1e-7;
   auto R = [&](int i) { return s.robots[i].radius; };
@@ -199,7 +200,7 @@ Vector contact_point(const RobotProblem& rp, unsigned seed) {
   }
   for (int q = 0; q < static_cast<int>(s.pairs.size()); ++q) {
     for (int t = 0; t < L.steps(); ++t) {
-      put(z, L.normal_force_index(q, t), force(rng));
+      put(z, L.normal_multiplier_index(q, t), force(rng));
       put(z, L.alpha1_index(q, t), slip(rng));
       put(z, L.alpha2_index(q, t), slip(rng));
       put(z, L.contact_gamma_index(q, t), slip(rng));
@@ -302,7 +303,7 @@ TEST(ModelFullDerivatives, ThreeRobotContactScene) {
   check_all_points(rp, 4242);
   // The straight-line guess is a point like any other.
   SCOPED_TRACE("straight-line guess");
-  expect_exact_derivatives(rp, rp.straight_line_guess(3.0), 77);
+  expect_exact_derivatives(rp, smoothstep_guess(rp, 3.0), 77);
 }
 
 // The full model (every unknown at every step, friction unknowns even with
@@ -373,7 +374,7 @@ TEST(ModelIpoptDerivativeTest, TwoRobotContactSceneHasNoErrors) {
   const Scene scene = make_scene("two_contact", 5, {a, b}, PairMode::kContact, 0.3);
   const RobotProblem rp(scene);
   const ElasticNlp elastic(rp.program(), ElasticFormulation::kLumped, 10.0);
-  const Vector x0 = elastic.lift(rp.straight_line_guess(4.0));
+  const Vector x0 = elastic.lift(smoothstep_guess(rp, 4.0));
 
   const std::string out = ipopt_derivative_test(elastic, x0, "second-order");
   EXPECT_NE(out.find("Starting derivative checker for second derivatives"), std::string::npos)

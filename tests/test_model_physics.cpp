@@ -94,7 +94,7 @@ class PointBuilder {
     for (int t = 1; t <= L_.steps(); ++t)
       gap(p, t, std::hypot(qj[t][kX] - qi[t][kX], qj[t][kY] - qi[t][kY]) - R);
   }
-  void normal_force(int p, int t, double v) { z_[L_.normal_force_index(p, t)] = to_.contact_multiplier(v); }
+  void normal_multiplier(int p, int t, double v) { z_[L_.normal_multiplier_index(p, t)] = to_.contact_multiplier(v); }
   void alpha1(int p, int t, double v) { z_[L_.alpha1_index(p, t)] = to_.contact_multiplier(v); }
   void alpha2(int p, int t, double v) { z_[L_.alpha2_index(p, t)] = to_.contact_multiplier(v); }
   void contact_gamma(int p, int t, double v) { z_[L_.contact_gamma_index(p, t)] = to_.contact_gamma(v); }
@@ -483,7 +483,7 @@ Vector pushed_point(const RobotProblem& rp, const Pushed& s, double cn) {
   for (int t = 0; t < 3; ++t) {
     b.force(0, t, s.P * s.ex, s.P * s.ey);
     b.force(1, t, -s.P * s.ex, -s.P * s.ey);
-    b.normal_force(0, t, cn);
+    b.normal_multiplier(0, t, cn);
   }
   return b.z();
 }
@@ -574,14 +574,14 @@ TEST(ModelPhysics, ImpactImpulseIsPairedWithTheGapAtTheEndOfTheInterval) {
   b.states(0, qi);
   b.states(1, qj);
   b.gaps_from(0, qi, qj);
-  for (int t = 0; t < 4; ++t) b.normal_force(0, t, cn[t]);
+  for (int t = 0; t < 4; ++t) b.normal_multiplier(0, t, cn[t]);
   expect_satisfied(rp, b.z());
 
   // The pairing itself: c_n^t with rho^{t+1}, both variables.
   for (int t = 0; t < 4; ++t) {
     int found = 0;
     for (const auto& p : rp.program().complementarity_pairs())
-      if (p.g.kind == ComplementaritySide::Kind::kVariable && p.g.index == L.normal_force_index(0, t))
+      if (p.g.kind == ComplementaritySide::Kind::kVariable && p.g.index == L.normal_multiplier_index(0, t))
         found += p.h.kind == ComplementaritySide::Kind::kVariable && p.h.index == L.gap_index(0, t + 1);
     EXPECT_EQ(found, 1) << "c_n^" << t;
   }
@@ -651,7 +651,7 @@ Vector spin_point(const RobotProblem& rp, const SpinContact& s, int slip_sign) {
   for (int t = 0; t < 4; ++t) {
     b.force(1, t, -s.cn * s.o, -slip * s.o);
     b.force(0, t, s.cn * s.o, slip * s.o);
-    b.normal_force(0, t, s.cn);
+    b.normal_multiplier(0, t, s.cn);
     (slip_sign > 0 ? b.alpha1(0, t, s.mu * s.cn) : b.alpha2(0, t, s.mu * s.cn));
     b.contact_gamma(0, t, std::abs(s.vT[t]));
   }
@@ -670,7 +670,7 @@ TEST(ModelPhysics, SlidingContactFrictionOpposesTheSlipAndTurnsBothRobotsTheSame
   EXPECT_GT(s.qi[4][kOmega], 0.5);
   EXPECT_LT(-s.mu * s.cn * s.vT[0], 0.0);
   EXPECT_NEAR(z[rp.layout().alpha2_index(0, 0)],
-              s.mu * z[rp.layout().normal_force_index(0, 0)], 1e-15);
+              s.mu * z[rp.layout().normal_multiplier_index(0, 0)], 1e-15);
 }
 
 TEST(ModelPhysics, ContactFrictionAidingTheSlipIsRejected) {

@@ -16,6 +16,7 @@
 #include <random>
 #include <string>
 
+#include "search/guess.h"
 #include "core/config/settings.h"
 #include "core/config/solver_settings.h"
 #include "core/elastic/elastic_solver.h"
@@ -128,7 +129,7 @@ TEST(ModelThreads, ElasticSolveIsBitwiseIdenticalWithOneAndTwoThreads) {
     // below it, warm-started: both phases of the objective reduction.
     const double T = 2.0 * rp.lower_bound().value();
     rp.fix_horizon(T);
-    const MpccResult feasible = solver.solve(rp.program(), rp.straight_line_guess(T));
+    const MpccResult feasible = solver.solve(rp.program(), smoothstep_guess(rp, T));
     rp.limit_horizon(0.95 * T);
     MpccResult faster = solver.solve(rp.program(), feasible);
     return std::make_pair(feasible, faster);

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "search/guess.h"
 #include "core/config/settings.h"
 #include "core/config/solver_settings.h"
 #include "core/util/errors.h"
@@ -35,9 +36,9 @@ Scene scenario(const std::string& name, const std::vector<std::string>& override
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
-int count_phase(const ReductionResult& r, const std::string& phase) {
+int count_kind(const ReductionResult& r, SolveKind kind) {
   int n = 0;
-  for (const SolveRecord& s : r.solves) n += s.phase == phase;
+  for (const SolveRecord& s : r.solves) n += s.kind == kind;
   return n;
 }
 
@@ -53,14 +54,14 @@ TEST(ObjectiveReduction, PerturbedFeasibleStartReachesACertifiedSolution) {
   RobotProblem problem(scene);
   IpoptSolver ipopt(ipopt_options(settings));
   ElasticSolver solver(ipopt, start.elastic);
-  std::vector<std::string> phases;
+  std::vector<SolveKind> phases;
   const ReductionResult result = reduce_objective(
       problem, solver, start.schedule,
       [&](double seconds) { return make_guess(problem, start, seconds); },
-      [&](const SolveRecord& r) { phases.push_back(r.phase); },
+      [&](const SolveRecord& r) { phases.push_back(r.kind); },
       make_perturbation(problem, start));
   for (const SolveRecord& r : result.solves)
-    std::printf("  %-22s bound %.4f T_f %.4f %s%s\n", r.phase.c_str(), r.bound, r.T_f,
+    std::printf("  %-22s bound %.4f T_f %.4f %s%s\n", to_string(r.kind).c_str(), r.bound, r.T_f,
                 to_string(r.status).c_str(), r.improved ? " *" : "");
   std::printf("T_best %.4f s, %zu solves, %d Ipopt iterations, %.2f s\n", result.T_best,
               result.solves.size(), result.iterations, result.seconds);
@@ -69,12 +70,12 @@ TEST(ObjectiveReduction, PerturbedFeasibleStartReachesACertifiedSolution) {
   EXPECT_TRUE(result.best.certificate.within(1e-6, 1e-6));
   // One perturbed re-solve, right after the certified feasibility solve, at
   // T_scale times its horizon; the callback saw every record.
-  ASSERT_EQ(count_phase(result, "perturbed feasibility"), 1);
+  ASSERT_EQ(count_kind(result, SolveKind::kPerturbedFeasibility), 1);
   size_t k = 0;
-  while (k < result.solves.size() && result.solves[k].phase != "perturbed feasibility") ++k;
+  while (k < result.solves.size() && result.solves[k].kind != SolveKind::kPerturbedFeasibility) ++k;
   ASSERT_GE(k, 1u);
   const SolveRecord& feasible = result.solves[k - 1];
-  EXPECT_EQ(feasible.phase, "feasibility");
+  EXPECT_EQ(feasible.kind, SolveKind::kFeasibility);
   EXPECT_TRUE(feasible.improved);
   EXPECT_NEAR(result.solves[k].bound, start.T_scale * feasible.T_f, 1e-9 * feasible.T_f);
   EXPECT_EQ(phases.size(), result.solves.size());
@@ -100,13 +101,13 @@ TEST(ObjectiveReduction, AnUncertifiedPerturbationLeavesTheReductionAsWithout) {
   int calls = 0;
   const ReductionResult perturbed = run([&](const Vector&) {
     ++calls;
-    return Perturbation{shape.straight_line_guess(impossible), impossible};
+    return Perturbation{smoothstep_guess(shape, impossible), impossible};
   });
   EXPECT_EQ(calls, 1);
   ASSERT_TRUE(perturbed.found);
   ASSERT_EQ(perturbed.solves.size(), plain.solves.size() + 1);
   const SolveRecord& extra = perturbed.solves[1];
-  EXPECT_EQ(extra.phase, "perturbed feasibility");
+  EXPECT_EQ(extra.kind, SolveKind::kPerturbedFeasibility);
   EXPECT_NE(extra.status, MpccStatus::kSolved);
   EXPECT_FALSE(extra.improved);
   EXPECT_EQ(extra.bound, impossible);
@@ -116,7 +117,7 @@ TEST(ObjectiveReduction, AnUncertifiedPerturbationLeavesTheReductionAsWithout) {
   for (size_t k = 0; k < plain.solves.size(); ++k) {
     const SolveRecord& a = plain.solves[k];
     const SolveRecord& b = perturbed.solves[k == 0 ? 0 : k + 1];
-    EXPECT_EQ(a.phase, b.phase) << k;
+    EXPECT_EQ(a.kind, b.kind) << k;
     EXPECT_TRUE(same_bits(a.T_f, b.T_f)) << k;
     EXPECT_EQ(a.iterations, b.iterations) << k;
   }
@@ -154,7 +155,7 @@ ReductionResult reduce_plainly(RobotProblem& problem, double rate = 0.0) {
 
 void print(const ReductionResult& result) {
   for (const SolveRecord& r : result.solves)
-    std::printf("  %-22s bound %.6f T_f %.6f %s%s\n", r.phase.c_str(), r.bound, r.T_f,
+    std::printf("  %-22s bound %.6f T_f %.6f %s%s\n", to_string(r.kind).c_str(), r.bound, r.T_f,
                 to_string(r.status).c_str(), r.improved ? " *" : "");
   std::printf("  best: %s\n", to_string(result.stationarity).c_str());
 }
@@ -179,7 +180,7 @@ TEST(ObjectiveReduction, NoStepIsAskedBelowTheLowerBound) {
   ASSERT_TRUE(result.found);
   EXPECT_GE(result.T_best, lower_bound);
   EXPECT_LE(result.T_best, lower_bound * (1 + 1e-2));
-  for (const SolveRecord& r : result.solves) EXPECT_GE(r.bound, lower_bound) << r.phase;
+  for (const SolveRecord& r : result.solves) EXPECT_GE(r.bound, lower_bound) << to_string(r.kind);
 }
 
 TEST(ObjectiveReduction, NoStepIsAskedBelowTheSmallestHorizon) {
@@ -197,7 +198,7 @@ TEST(ObjectiveReduction, NoStepIsAskedBelowTheSmallestHorizon) {
   const ReductionResult result = reduce_plainly(problem);
   print(result);
   ASSERT_TRUE(result.found);
-  for (const SolveRecord& r : result.solves) EXPECT_GE(r.bound, smallest) << r.phase;
+  for (const SolveRecord& r : result.solves) EXPECT_GE(r.bound, smallest) << to_string(r.kind);
   // Within Ipopt's absolute tolerance (1e-9 in model units) of its bound.
   EXPECT_NEAR(result.T_best, smallest, 1e-9 * problem.units().time);
   // Certified on the model as it is left (the horizon freed), as solve_scene certifies it.
@@ -211,7 +212,7 @@ TEST(ObjectiveReduction, AnEvaluationFailureIsReportedAndTheNextHorizonIsTried) 
   RobotProblem problem(scenario("one_robot_axis", {"steps=10"}));
   DefaultSolvers d;
   auto poisoned = [&](double seconds) {
-    Vector z = problem.straight_line_guess(seconds);
+    Vector z = smoothstep_guess(problem, seconds);
     z[z.size() / 2] = std::numeric_limits<double>::quiet_NaN();
     return z;
   };
@@ -226,14 +227,14 @@ TEST(ObjectiveReduction, AnEvaluationFailureIsReportedAndTheNextHorizonIsTried) 
   // Poisoned at the first horizon only: the second is solved and the reduction goes on.
   int calls = 0;
   const ReductionResult later = reduce_objective(problem, d.solver, d.schedule, [&](double seconds) {
-    return ++calls == 1 ? poisoned(seconds) : problem.straight_line_guess(seconds);
+    return ++calls == 1 ? poisoned(seconds) : smoothstep_guess(problem, seconds);
   });
   print(later);
   ASSERT_TRUE(later.found) << later.feasibility_detail;
   EXPECT_EQ(later.solves[0].status, MpccStatus::kFailed);
   EXPECT_EQ(later.solves[0].outcome, NlpOutcome::kInvalidNumber);
   EXPECT_EQ(ipopt_status_name(later.solves[0].ipopt_status), "Invalid_Number_Detected");
-  EXPECT_EQ(later.solves[1].phase, "feasibility");
+  EXPECT_EQ(later.solves[1].kind, SolveKind::kFeasibility);
   EXPECT_TRUE(later.solves[1].improved);
   EXPECT_NEAR(later.solves[1].bound, 2.0 * later.solves[0].bound, 1e-12 * later.solves[0].bound);
   EXPECT_GT(later.solves.size(), 2u);  // the reduction ran from there
@@ -259,13 +260,13 @@ TEST(ObjectiveReduction, ALocalOptimumEndsTheLoopOnceAProbeBelowItFails) {
     for (size_t k = 0; k < result.solves.size(); ++k) {
       const SolveRecord& r = result.solves[k];
       const bool converged = r.status == MpccStatus::kSolved;
-      if (!((r.phase == "reduction" && converged && r.T_f < r.bound * (1 - 1e-6)) ||
-            (r.phase == "minimize" && converged)))
+      if (!((r.kind == SolveKind::kReduction && converged && r.T_f < r.bound * (1 - 1e-6)) ||
+            (r.kind == SolveKind::kMinimize && converged)))
         continue;
       ++optima;
       if (k + 1 == result.solves.size()) continue;
       const SolveRecord& probe = result.solves[k + 1];
-      EXPECT_EQ(probe.phase, "fixed step") << name << " after solve " << k;
+      EXPECT_EQ(probe.kind, SolveKind::kFixedStep) << name << " after solve " << k;
       EXPECT_LT(probe.bound, result.solves[k].T_f) << name;
       if (!probe.improved) {
         EXPECT_EQ(k + 2, result.solves.size()) << name << ": solves after a failed probe";
@@ -275,14 +276,14 @@ TEST(ObjectiveReduction, ALocalOptimumEndsTheLoopOnceAProbeBelowItFails) {
     // A step of the homotopy in T_f is only feasible; a minimisation that converged inside its
     // bound is a KKT point of the elastic NLP at eps = 0.
     const SolveRecord& b = best_solve(result);
-    if (b.phase == "fixed step" || b.phase == "feasibility") {
+    if (b.kind == SolveKind::kFixedStep || b.kind == SolveKind::kFeasibility) {
       EXPECT_EQ(result.stationarity, Stationarity::kFeasible) << name;
     } else if (b.T_f < b.bound * (1 - 1e-6)) {
       EXPECT_EQ(result.stationarity, Stationarity::kStrong) << name;
     }
     // Two robots: the minimisation is no longer the last solve; a probe follows.
     if (std::string(name) == "two_robots_swap_avoid") {
-      EXPECT_EQ(result.solves.back().phase, "fixed step") << name << ": no probe below the optimum";
+      EXPECT_EQ(result.solves.back().kind, SolveKind::kFixedStep) << name << ": no probe below the optimum";
     }
   }
 }
@@ -300,7 +301,7 @@ TEST(ObjectiveReduction, ACappedEarlyMinimisationHandsBackToTheFixedSteps) {
   ASSERT_TRUE(result.found);
   std::vector<size_t> minimizations;
   for (size_t k = 0; k < result.solves.size(); ++k)
-    if (result.solves[k].phase == "minimize") minimizations.push_back(k);
+    if (result.solves[k].kind == SolveKind::kMinimize) minimizations.push_back(k);
   ASSERT_EQ(minimizations.size(), 2u);
   const SolveRecord& capped = result.solves[minimizations[0]];
   EXPECT_NE(capped.status, MpccStatus::kSolved);
@@ -311,7 +312,7 @@ TEST(ObjectiveReduction, ACappedEarlyMinimisationHandsBackToTheFixedSteps) {
   EXPECT_EQ(line.find("Ipopt"), std::string::npos) << line;
   EXPECT_FALSE(capped.improved);
   EXPECT_LE(capped.iterations, 3 * capped.nlp_solves);
-  EXPECT_EQ(result.solves[minimizations[0] + 1].phase, "fixed step");
+  EXPECT_EQ(result.solves[minimizations[0] + 1].kind, SolveKind::kFixedStep);
   const SolveRecord& last = result.solves[minimizations[1]];
   EXPECT_EQ(last.status, MpccStatus::kSolved);
   EXPECT_GT(last.iterations, 3);
@@ -329,7 +330,7 @@ TEST(ObjectiveReduction, TheSolveLogSaysHowEachSolveEndedInWords) {
   EXPECT_EQ(solve_outcome_words(MpccStatus::kFailed, NlpOutcome::kFailed), "failed");
   // Only a real failure names Ipopt's status.
   SolveRecord r;
-  r.phase = "reduction";
+  r.kind = SolveKind::kReduction;
   r.status = MpccStatus::kFailed;
   r.outcome = NlpOutcome::kFailed;
   r.ipopt_status = -2;  // Restoration_Failed
@@ -381,9 +382,9 @@ TEST(ObjectiveReduction, TheBranchMinimizerDescendsAndReachesTheOneRobotOptimum)
     double best_fixed = kInf;
     bool branch = false;
     for (const SolveRecord& r : result.solves) {
-      if (r.phase == "fixed step" && r.status == MpccStatus::kSolved)
+      if (r.kind == SolveKind::kFixedStep && r.status == MpccStatus::kSolved)
         best_fixed = std::min(best_fixed, r.T_f);
-      if (r.phase == "branch") {
+      if (r.kind == SolveKind::kBranch) {
         branch = true;
         if (r.improved) {
           EXPECT_EQ(r.status, MpccStatus::kSolved) << name;
@@ -393,10 +394,10 @@ TEST(ObjectiveReduction, TheBranchMinimizerDescendsAndReachesTheOneRobotOptimum)
     EXPECT_LE(result.T_best, best_fixed) << name;
     // A best from a branch descent is B-stationary only when no flip was left.
     const SolveRecord& b = best_solve(result);
-    if (b.phase == "branch" && result.stationarity == Stationarity::kB) {
+    if (b.kind == SolveKind::kBranch && result.stationarity == Stationarity::kB) {
       EXPECT_TRUE(result.best.b_stationary) << name;
     }
-    if (b.phase == "branch" && !result.best.b_stationary) {
+    if (b.kind == SolveKind::kBranch && !result.best.b_stationary) {
       EXPECT_EQ(result.stationarity, Stationarity::kFeasible) << name;
     }
     // The one robot reaches its optimum by a minimisation: a stationary point.

@@ -53,10 +53,10 @@ std::array<double, 2> move(const Robot& rb) {
 
 // Every robot's straight time, checked equal; returns the common time.
 double common_straight_time(const Scene& scene) {
-  const auto t0 = robot_straight_time(scene.robots[0], scene.gravity);
+  const auto t0 = straight_move_time(scene.robots[0], scene.gravity);
   EXPECT_TRUE(t0.has_value());
   for (const auto& rb : scene.robots) {
-    const auto t = robot_straight_time(rb, scene.gravity);
+    const auto t = straight_move_time(rb, scene.gravity);
     EXPECT_TRUE(t.has_value()) << scene.name << " " << rb.name;
     if (!t || !t0) continue;
     EXPECT_TRUE(std::isfinite(*t)) << scene.name << " " << rb.name;
@@ -233,7 +233,7 @@ void expect_solves_to_bound(const char* id) {
   const Scene scene = load_paper(id);
   const double lb = scene_lower_bound(scene).value();
   const SceneSolve run = solve_scene(scene, Settings::load(default_settings_path()));
-  ASSERT_TRUE(run.solved()) << id << ": " << run.info.status;
+  ASSERT_TRUE(run.solved()) << id << ": " << to_string(run.info.status);
   const double err = (run.T_f() - lb) / lb;
   std::printf("%s: T_f %.6f s, LB %.6f s, rel. gap %.2e\n", id, run.T_f(), lb, err);
   EXPECT_GE(run.T_f(), lb * (1 - 1e-3));

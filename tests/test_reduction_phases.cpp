@@ -273,8 +273,8 @@ TEST(ReductionPhases, NoStepPastTheTimeLimit) {
   o.out_of_time = true;
   for (Phase p : {Phase::kPerturbed, Phase::kMinimizingStep, Phase::kFixedStep, Phase::kProbe,
                   Phase::kEarlyMinimize}) {
-    EXPECT_EQ(next_phase(in(p), o, schedule()).phase, Phase::kDone) << to_string(p);
-    EXPECT_EQ(next_phase(in(p), o, schedule()).stop, StopReason::kOutOfTime) << to_string(p);
+    EXPECT_EQ(next_phase(in(p), o, schedule()).phase, Phase::kDone) << static_cast<int>(p);
+    EXPECT_EQ(next_phase(in(p), o, schedule()).stop, StopReason::kOutOfTime) << static_cast<int>(p);
   }
 }
 
@@ -304,13 +304,13 @@ TEST(ReductionPhases, AFinalMinimisationEndsTheRun) {
 }
 
 TEST(ReductionPhases, PhasesHaveTheSolveLogsNames) {
-  EXPECT_EQ(to_string(Phase::kFeasibility), "feasibility");
-  EXPECT_EQ(to_string(Phase::kPerturbed), "perturbed feasibility");
-  EXPECT_EQ(to_string(Phase::kMinimizingStep), "reduction");
-  EXPECT_EQ(to_string(Phase::kFixedStep), "fixed step");
-  EXPECT_EQ(to_string(Phase::kProbe), "fixed step");
-  EXPECT_EQ(to_string(Phase::kEarlyMinimize), "minimize");
-  EXPECT_EQ(to_string(Phase::kFinalMinimize), "minimize");
+  EXPECT_EQ(solve_kind(Phase::kFeasibility), SolveKind::kFeasibility);
+  EXPECT_EQ(solve_kind(Phase::kPerturbed), SolveKind::kPerturbedFeasibility);
+  EXPECT_EQ(solve_kind(Phase::kMinimizingStep), SolveKind::kReduction);
+  EXPECT_EQ(solve_kind(Phase::kFixedStep), SolveKind::kFixedStep);
+  EXPECT_EQ(solve_kind(Phase::kProbe), SolveKind::kFixedStep);
+  EXPECT_EQ(solve_kind(Phase::kEarlyMinimize), SolveKind::kMinimize);
+  EXPECT_EQ(solve_kind(Phase::kFinalMinimize), SolveKind::kMinimize);
 }
 
 }  // namespace

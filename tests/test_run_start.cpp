@@ -42,6 +42,23 @@ TEST(RunStart, AnExceptionInsideTheStartBecomesStatusError) {
   EXPECT_TRUE(std::isnan(back.T_f));
 }
 
+TEST(RunStart, AFailedInternalCheckInsideTheStartIsItsErrorStatusNotAnAbort) {
+  // A perturbation whose horizon exceeds the feasible one breaks an invariant of the
+  // reduction (step 1b: "a perturbation's horizon is ... at most the feasible one"), a
+  // DISCO_CHECK: the start records it as status error, with the check's message, and the
+  // process goes on (run_start.h's promise; a check used to abort the whole search).
+  const Settings settings = Settings::load(default_settings_path());
+  const Scene scene = small_scene();
+  StartSpec spec = make_start(scene, 1, 0, reduction_settings(settings), elastic_settings(settings));
+  spec.guess = GuessKind::kPerturbedFeasible;
+  spec.T_scale = 1.5;  // make_start draws it in [0.8, 1]: only a bug could give 1.5
+  StartOutcome out;
+  EXPECT_NO_THROW(out = run_start(scene, settings, spec, 0.0, BudgetSource::kNone));
+  EXPECT_EQ(out.status, StartStatus::kError);
+  EXPECT_NE(out.detail.find("internal check failed at"), std::string::npos) << out.detail;
+  EXPECT_NE(out.detail.find("at most the feasible one"), std::string::npos) << out.detail;
+}
+
 TEST(RunStart, ASolvedStartRecordsItsCertifiedResult) {
   const Settings settings = Settings::load(default_settings_path());
   const Scene scene = small_scene();
@@ -82,7 +99,8 @@ TEST(RunStart, ItsHistoryListsEveryNewBestOnTheStartsOwnClock) {
   }
   EXPECT_LE(out.time_to_best, out.seconds);
   // The guess and the schedule are recorded as data, as make_start drew them.
-  EXPECT_EQ(out.guess, to_string(spec.guess));
+  EXPECT_EQ(out.guess, spec.guess);
+  EXPECT_EQ(out.to_json()["guess"], to_string(spec.guess));
   EXPECT_EQ(out.schedule.at("rate").get<double>(), spec.schedule.rate);
   EXPECT_EQ(out.schedule.at("zeta").get<double>(), spec.elastic.zeta);
   const StartOutcome back = StartOutcome::from_json(nlohmann::json::parse(out.to_json().dump()));

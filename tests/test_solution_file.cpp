@@ -737,7 +737,7 @@ pairs:
 
 TEST(SolutionFile, ContactSceneMatchesThePhysicsInSiUnits) {
   const Written w = solve_and_write(kContactScene, "push_box");
-  ASSERT_TRUE(w.run.solved()) << w.run.info.status << " " << w.run.info.detail;
+  ASSERT_TRUE(w.run.solved()) << to_string(w.run.info.status) << " " << w.run.info.detail;
   ASSERT_TRUE(check_common_schema(w.read, *w.run.problem));
   ASSERT_TRUE(check_solved_schema(w.read));
   EXPECT_EQ(w.read["robots"][1]["force_axis"], json({0.0, 1.0})) << "box's force axis";
@@ -749,7 +749,7 @@ TEST(SolutionFile, ContactSceneMatchesThePhysicsInSiUnits) {
 
 TEST(SolutionFile, AvoidSceneMatchesThePhysicsInSiUnits) {
   const Written w = solve_and_write(kAvoidScene, "swap_avoid");
-  ASSERT_TRUE(w.run.solved()) << w.run.info.status << " " << w.run.info.detail;
+  ASSERT_TRUE(w.run.solved()) << to_string(w.run.info.status) << " " << w.run.info.detail;
   ASSERT_TRUE(check_common_schema(w.read, *w.run.problem));
   ASSERT_TRUE(check_solved_schema(w.read));
   const PhysicsSummary p = check_physics(w.read);

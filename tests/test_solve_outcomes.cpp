@@ -15,10 +15,10 @@ TEST(SolveOutcomes, ASpinningRobotThatDampingStopsShortOfItsPhiTargetIsInfeasibl
   const Scene scene = parse_scene(model_test::kSpinShortScene, "spin_short.yaml");
   const SceneSolve run = solve_scene(scene, Settings::load(default_settings_path()));
   EXPECT_FALSE(run.solved());
-  EXPECT_EQ(run.info.status, "infeasible");
+  EXPECT_EQ(run.info.status, MpccStatus::kInfeasible);
   EXPECT_EQ(run.z.size(), 0);
   // Three feasibility attempts, the horizon doubling, each on a model built
-  // for its own horizon (the adaptive model's T_max, core/model/adaptive.h).
+  // for its own horizon (the adaptive model's T_max, core/model/model_plan.h).
   const double T0 = feasibility_horizon(*run.problem, reduction_settings(Settings::load(default_settings_path())));
   ASSERT_EQ(run.result.solves.size(), 3u);
   for (int k = 0; k < 3; ++k) EXPECT_DOUBLE_EQ(run.result.solves[k].bound, T0 * (1 << k));

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "search/guess.h"
 #include "core/config/settings.h"
 #include "core/config/solver_settings.h"
 #include "core/model/lower_bound.h"
@@ -181,7 +182,7 @@ TEST(Start, IndexZeroIsTheBaseSettingsAndTheStraightGuess) {
     EXPECT_TRUE(same_elastic(s.elastic, base_elastic()));
     const RobotProblem rp(scene);
     for (double T : {1.0, 4.56})
-      EXPECT_TRUE(bitwise_equal(make_guess(rp, s, T), rp.straight_line_guess(T))) << T;
+      EXPECT_TRUE(bitwise_equal(make_guess(rp, s, T), smoothstep_guess(rp, T))) << T;
     EXPECT_EQ(s.describe(),
               "start 0: straight, horizon x1.70, rate 0.040, grow 1.30, shrink 0.60, min rate 0.0030, "
               "zeta 3");
@@ -200,11 +201,11 @@ std::vector<double> feasibility_horizons(const RobotProblem& rp, const StartSpec
 // is at least the robot's minimum time (both from the scene, core/model/lower_bound.h).
 bool some_robot_too_weak_for_the_smoothstep(const Scene& scene, double T) {
   for (const Robot& rb : scene.robots) {
-    const auto m = robot_straight_move(rb, scene.gravity);
+    const auto m = straight_move_limits(rb, scene.gravity);
     if (!m || m->distance == 0.0) continue;
     const double a1 = (m->push - m->friction) / rb.mass, a2 = (m->push + m->friction) / rb.mass;
     if (a1 > 0 && 6 * m->distance / (T * T) > a1 &&
-        T >= straight_move_time(m->distance, a1, a2, m->stop_at_end))
+        T >= bang_bang_time(m->distance, a1, a2, m->stop_at_end))
       return true;
   }
   return false;
@@ -225,7 +226,7 @@ TEST(Start, TheStraightGuessFollowsWhatTheRobotsCanDo) {
         make_start(scene, 1, 0, reduction_settings(settings), elastic_settings(settings));
     for (double T : feasibility_horizons(rp, s)) {
       SCOPED_TRACE(std::string(name) + " at " + std::to_string(T) + " s");
-      const Vector guess = make_guess(rp, s, T), smooth = rp.straight_line_guess(T);
+      const Vector guess = make_guess(rp, s, T), smooth = smoothstep_guess(rp, T);
       if (!some_robot_too_weak_for_the_smoothstep(scene, T)) {
         EXPECT_TRUE(bitwise_equal(guess, smooth));  // as before
         continue;
@@ -401,7 +402,7 @@ TEST(Start, YieldingRobotsWaitUntilTheWayIsClear) {
   const Scene scene = load_scene(std::string(DISCO_SOURCE_DIR) + "/configs/scenarios/paper/B1.yaml");
   const RobotProblem rp(scene);
   const double T = 12.0;
-  const Vector straight = rp.straight_line_guess(T);
+  const Vector straight = smoothstep_guess(rp, T);
   const double clearance = scene.robots[0].radius + scene.robots[1].radius;
   ASSERT_LT(min_centre_distance(rp, straight, 0, 1), clearance);
   int waited[2] = {0, 0};
@@ -432,7 +433,7 @@ TEST(Start, DetoursSeparateTheRobotsOnMirrorImageSides) {
   const Scene scene = scenario("two_robots_swap_avoid");
   const RobotProblem rp(scene);
   const double T = 4.0;
-  const Vector straight = rp.straight_line_guess(T);
+  const Vector straight = smoothstep_guess(rp, T);
   const StartSpec left = find_start(scene, GuessKind::kDetour, +1);
   const StartSpec right = find_start(scene, GuessKind::kDetour, -1);
   const Vector zl = make_guess(rp, left, T), zr = make_guess(rp, right, T);
@@ -475,7 +476,7 @@ TEST(Start, DetoursSeparateTheRobotsOnMirrorImageSides) {
 TEST(Start, DetoursWidenTheClosestApproachOfEveryConflictingPair) {
   const Scene scene = scenario("three_robots_contact");
   const RobotProblem rp(scene);
-  const Vector straight = rp.straight_line_guess(5.0);
+  const Vector straight = smoothstep_guess(rp, 5.0);
   for (int side : {+1, -1}) {
     const Vector z = make_guess(rp, find_start(scene, GuessKind::kDetour, side), 5.0);
     ASSERT_TRUE(all_finite(z));
@@ -495,9 +496,9 @@ TEST(Start, PerturbedGuessesDifferFromStraightButKeepStartAndTarget) {
                              apart_scene()}) {
     const RobotProblem rp(scene);
     const Layout& lay = rp.layout();
-    const Scene& ms = lay.scene();  // model units
+    const Scene& ms = lay.model_scene();  // model units
     const double T = 3.5, h = T / rp.units().time / scene.steps;
-    const Vector straight = rp.straight_line_guess(T);
+    const Vector straight = smoothstep_guess(rp, T);
     for (int k = 0; k < 3; ++k) {
       const StartSpec s = find_start(scene, GuessKind::kPerturbed, 0, 100 + k);
       SCOPED_TRACE(scene.name + ": " + s.describe());
@@ -545,7 +546,7 @@ TEST(Start, PerturbedFeasibleRetimesTheFeasiblePathsWithConsistentKinematics) {
                              apart_scene()}) {
     const RobotProblem rp(scene);
     const Layout& lay = rp.layout();
-    const Scene& ms = lay.scene();  // model units
+    const Scene& ms = lay.model_scene();  // model units
     const int N = scene.steps;
     // A stand-in for a feasible point: a guess whose paths are not straight.
     const double T = 4.0;
@@ -558,7 +559,7 @@ TEST(Start, PerturbedFeasibleRetimesTheFeasiblePathsWithConsistentKinematics) {
       const StartSpec s = find_start(scene, GuessKind::kPerturbedFeasible, 0, seed);
       SCOPED_TRACE(scene.name + ": " + s.describe());
       // Its feasibility phase starts from the straight lines.
-      EXPECT_TRUE(bitwise_equal(make_guess(rp, s, T), rp.straight_line_guess(T)));
+      EXPECT_TRUE(bitwise_equal(make_guess(rp, s, T), smoothstep_guess(rp, T)));
       EXPECT_TRUE(static_cast<bool>(make_perturbation(rp, s)));
       // Deterministic.
       const Perturbation p = perturb_feasible(rp, s, feasible);

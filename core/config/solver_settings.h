@@ -11,7 +11,7 @@
 #include "core/config/settings.h"
 #include "core/elastic/elastic_solver.h"
 #include "core/ipopt/ipopt_solver.h"
-#include "core/model/adaptive.h"
+#include "core/model/model_plan.h"
 #include "core/util/errors.h"
 
 namespace disco {

@@ -21,6 +21,15 @@ std::string to_string(MpccStatus s) {
   return "failed";
 }
 
+std::string to_string(Stationarity s) {
+  switch (s) {
+    case Stationarity::kFeasible: return "feasible";
+    case Stationarity::kStrong: return "strongly stationary";
+    case Stationarity::kB: return "B-stationary";
+  }
+  return "feasible";
+}
+
 Certificate certify(const Mpcc& mpcc, const ConstVectorRef& z) {
   Certificate cert;
   Vector c(mpcc.num_constraints());

@@ -48,6 +48,18 @@ enum class MpccStatus {
 };
 std::string to_string(MpccStatus s);
 
+// What a certified point is known to be for the MPCC's objective (solution.json
+// "stationarity"; search/objective_reduction.h says which solves give which).
+enum class Stationarity {
+  kFeasible,  // certified feasible: a step of the homotopy, no stationarity shown
+  kStrong,    // a converged elastic-mode minimisation with complementarity tight and the bound
+              // on T_f inactive: a KKT point of the elastic NLP at eps = 0, strongly stationary
+              // for the MPCC (paper Section IV)
+  kB,         // a branch descent that ended without a flip, the bound on T_f inactive: no
+              // biactive pair's fixed side has a negative multiplier, B-stationary
+};
+std::string to_string(Stationarity s);  // "feasible", "strongly stationary", "B-stationary"
+
 struct ElasticSettings {
   ElasticFormulation formulation = ElasticFormulation::kLumped;
   double zeta = 10.0;

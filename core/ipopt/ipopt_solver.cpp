@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <exception>
 
 #include "core/util/interrupt.h"
 #include "core/util/check.h"
@@ -21,7 +22,9 @@ using Clock = std::chrono::steady_clock;
 
 // The TNLP adapter (shape of Ipopt's hs071 example): forwards every callback
 // to the Nlp's checked public evaluation, which already turns exceptions and
-// non-finite values into `false`.
+// non-finite values into `false`. Nothing crosses into Ipopt: a failed internal
+// check (or any other exception) is caught in the callback, which returns false,
+// and the next intermediate callback stops the solve; IpoptSolver::solve rethrows it.
 class TnlpAdapter : public Ipopt::TNLP {
  public:
   TnlpAdapter(const Nlp& nlp, const NlpPoint& start, NlpResult& out, const NlpLimits& limits)
@@ -29,79 +32,50 @@ class TnlpAdapter : public Ipopt::TNLP {
 
   // Why the adapter stopped the solve (kFailed: it did not).
   NlpOutcome stopped() const { return stopped_; }
+  // The exception a callback caught, if any.
+  std::exception_ptr error() const { return error_; }
 
   bool get_nlp_info(Index& n, Index& m, Index& nnz_jac, Index& nnz_h,
                     IndexStyleEnum& style) override {
-    n = nlp_.num_variables();
-    m = nlp_.num_constraints();
-    nnz_jac = nlp_.jacobian_pattern().size();
-    nnz_h = nlp_.hessian_pattern().size();
-    style = C_STYLE;
-    return true;
+    return caught([&] { return nlp_info(n, m, nnz_jac, nnz_h, style); });
   }
-
   bool get_bounds_info(Index n, Number* x_l, Number* x_u, Index m, Number* g_l,
                        Number* g_u) override {
-    Eigen::Map<Vector>(x_l, n) = nlp_.variable_lower();
-    Eigen::Map<Vector>(x_u, n) = nlp_.variable_upper();
-    Eigen::Map<Vector>(g_l, m) = nlp_.constraint_lower();
-    Eigen::Map<Vector>(g_u, m) = nlp_.constraint_upper();
-    return true;
+    return caught([&] { return bounds_info(n, x_l, x_u, m, g_l, g_u); });
   }
-
   bool get_starting_point(Index n, bool init_x, Number* x, bool init_z, Number* z_L, Number* z_U,
                           Index m, bool init_lambda, Number* lambda) override {
-    if (init_x) Eigen::Map<Vector>(x, n) = start_.z;
-    if (init_z || init_lambda) {
-      if (!start_.has_duals()) return false;
-      if (init_z) {
-        Eigen::Map<Vector>(z_L, n) = start_.z_lo;
-        Eigen::Map<Vector>(z_U, n) = start_.z_hi;
-      }
-      if (init_lambda) Eigen::Map<Vector>(lambda, m) = start_.lambda;
-    }
-    return true;
+    return caught([&] { return starting_point(n, init_x, x, init_z, z_L, z_U, m, init_lambda, lambda); });
   }
-
   bool eval_f(Index n, const Number* x, bool, Number& f) override {
-    return nlp_.objective(Eigen::Map<const Vector>(x, n), f);
+    return caught([&] { return nlp_.objective(Eigen::Map<const Vector>(x, n), f); });
   }
   bool eval_grad_f(Index n, const Number* x, bool, Number* g) override {
-    Eigen::Map<Vector> out(g, n);
-    return nlp_.gradient(Eigen::Map<const Vector>(x, n), out);
+    return caught([&] {
+      Eigen::Map<Vector> out(g, n);
+      return nlp_.gradient(Eigen::Map<const Vector>(x, n), out);
+    });
   }
   bool eval_g(Index n, const Number* x, bool, Index m, Number* g) override {
-    Eigen::Map<Vector> out(g, m);
-    return nlp_.constraints(Eigen::Map<const Vector>(x, n), out);
+    return caught([&] {
+      Eigen::Map<Vector> out(g, m);
+      return nlp_.constraints(Eigen::Map<const Vector>(x, n), out);
+    });
   }
   bool eval_jac_g(Index n, const Number* x, bool, Index, Index nele, Index* irow, Index* jcol,
                   Number* values) override {
-    if (values == nullptr) {
-      const auto& p = nlp_.jacobian_pattern();
-      std::copy(p.rows.begin(), p.rows.end(), irow);
-      std::copy(p.cols.begin(), p.cols.end(), jcol);
-      return true;
-    }
-    Eigen::Map<Vector> out(values, nele);
-    return nlp_.jacobian(Eigen::Map<const Vector>(x, n), out);
+    return caught([&] { return jacobian(n, x, nele, irow, jcol, values); });
   }
   bool eval_h(Index n, const Number* x, bool, Number obj_factor, Index m, const Number* lambda,
               bool, Index nele, Index* irow, Index* jcol, Number* values) override {
-    if (values == nullptr) {
-      const auto& p = nlp_.hessian_pattern();
-      std::copy(p.rows.begin(), p.rows.end(), irow);
-      std::copy(p.cols.begin(), p.cols.end(), jcol);
-      return true;
-    }
-    Eigen::Map<Vector> out(values, nele);
-    return nlp_.hessian(Eigen::Map<const Vector>(x, n), obj_factor,
-                        Eigen::Map<const Vector>(lambda, m), out);
+    return caught([&] { return hessian(n, x, obj_factor, m, lambda, nele, irow, jcol, values); });
   }
 
   bool intermediate_callback(Ipopt::AlgorithmMode, Index iter, Number, Number, Number, Number,
                              Number, Number, Number, Number, Index,
                              const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
     out_.iterations = iter;
+    if (error_) return false;  // a callback failed on a bug: stop here
     if (limits_.iterations > 0 && iter >= limits_.iterations) {
       stopped_ = NlpOutcome::kIterationCap;
       return false;
@@ -117,19 +91,88 @@ class TnlpAdapter : public Ipopt::TNLP {
                          const Number* z_U, Index m, const Number*, const Number* lambda,
                          Number obj_value, const Ipopt::IpoptData*,
                          Ipopt::IpoptCalculatedQuantities*) override {
-    out_.point.z = Eigen::Map<const Vector>(x, n);
-    out_.point.z_lo = Eigen::Map<const Vector>(z_L, n);
-    out_.point.z_hi = Eigen::Map<const Vector>(z_U, n);
-    out_.point.lambda = Eigen::Map<const Vector>(lambda, m);
-    out_.objective = obj_value;
+    caught([&] {
+      out_.point.z = Eigen::Map<const Vector>(x, n);
+      out_.point.z_lo = Eigen::Map<const Vector>(z_L, n);
+      out_.point.z_hi = Eigen::Map<const Vector>(z_U, n);
+      out_.point.lambda = Eigen::Map<const Vector>(lambda, m);
+      out_.objective = obj_value;
+      return true;
+    });
   }
 
  private:
+  // Runs a callback's body; an exception is kept (the first one) and becomes `false`.
+  template <class Body>
+  bool caught(Body&& body) {
+    try {
+      return body();
+    } catch (...) {
+      if (!error_) error_ = std::current_exception();
+      return false;
+    }
+  }
+
+  bool nlp_info(Index& n, Index& m, Index& nnz_jac, Index& nnz_h, IndexStyleEnum& style) {
+    n = nlp_.num_variables();
+    m = nlp_.num_constraints();
+    nnz_jac = nlp_.jacobian_pattern().size();
+    nnz_h = nlp_.hessian_pattern().size();
+    style = C_STYLE;
+    return true;
+  }
+
+  bool bounds_info(Index n, Number* x_l, Number* x_u, Index m, Number* g_l, Number* g_u) {
+    Eigen::Map<Vector>(x_l, n) = nlp_.variable_lower();
+    Eigen::Map<Vector>(x_u, n) = nlp_.variable_upper();
+    Eigen::Map<Vector>(g_l, m) = nlp_.constraint_lower();
+    Eigen::Map<Vector>(g_u, m) = nlp_.constraint_upper();
+    return true;
+  }
+
+  bool starting_point(Index n, bool init_x, Number* x, bool init_z, Number* z_L, Number* z_U,
+                      Index m, bool init_lambda, Number* lambda) {
+    if (init_x) Eigen::Map<Vector>(x, n) = start_.z;
+    if (init_z || init_lambda) {
+      if (!start_.has_duals()) return false;
+      if (init_z) {
+        Eigen::Map<Vector>(z_L, n) = start_.z_lo;
+        Eigen::Map<Vector>(z_U, n) = start_.z_hi;
+      }
+      if (init_lambda) Eigen::Map<Vector>(lambda, m) = start_.lambda;
+    }
+    return true;
+  }
+
+  bool jacobian(Index n, const Number* x, Index nele, Index* irow, Index* jcol, Number* values) {
+    if (values == nullptr) {
+      const auto& p = nlp_.jacobian_pattern();
+      std::copy(p.rows.begin(), p.rows.end(), irow);
+      std::copy(p.cols.begin(), p.cols.end(), jcol);
+      return true;
+    }
+    Eigen::Map<Vector> out(values, nele);
+    return nlp_.jacobian(Eigen::Map<const Vector>(x, n), out);
+  }
+  bool hessian(Index n, const Number* x, Number obj_factor, Index m, const Number* lambda,
+               Index nele, Index* irow, Index* jcol, Number* values) {
+    if (values == nullptr) {
+      const auto& p = nlp_.hessian_pattern();
+      std::copy(p.rows.begin(), p.rows.end(), irow);
+      std::copy(p.cols.begin(), p.cols.end(), jcol);
+      return true;
+    }
+    Eigen::Map<Vector> out(values, nele);
+    return nlp_.hessian(Eigen::Map<const Vector>(x, n), obj_factor,
+                        Eigen::Map<const Vector>(lambda, m), out);
+  }
+
   const Nlp& nlp_;
   const NlpPoint& start_;
   NlpResult& out_;
   const NlpLimits& limits_;
   NlpOutcome stopped_ = NlpOutcome::kFailed;
+  std::exception_ptr error_;
 };
 
 double parse_number(const IpoptOption& o, bool integer) {
@@ -259,6 +302,7 @@ NlpResult IpoptSolver::solve(const Nlp& nlp, const NlpPoint& start, const NlpLim
   auto* adapter = new TnlpAdapter(nlp, start, out, limits);
   Ipopt::SmartPtr<Ipopt::TNLP> tnlp = adapter;
   out.ipopt_status = static_cast<int>(app->OptimizeTNLP(tnlp));
+  if (adapter->error()) std::rethrow_exception(adapter->error());  // a bug in a callback
   out.outcome = outcome_of(out.ipopt_status, adapter->stopped());
   out.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   if (out.point.z.size() != nlp.num_variables()) {  // Ipopt gave up before finalize

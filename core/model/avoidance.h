@@ -4,7 +4,7 @@
 // a bound on the gap unknown (core/model/gap.h). No contact forces exist
 // between such robots. (t = 0 is the start, checked when the scene is read;
 // outside the pair's window the robots are provably farther apart,
-// core/model/adaptive.h.)
+// core/model/model_plan.h.)
 #pragma once
 
 #include "core/model/layout.h"

@@ -14,4 +14,9 @@ namespace disco {
 
 void add_bounds(Layout& L, PolynomialProgram& P, double horizon_min, double horizon_max);
 
+// The pose of the target box nearest the robot's start: x, y and phi of the start, each
+// clamped to its target interval. A robot's straight move goes there (the guesses,
+// search/guess.h; the lower bound, core/model/lower_bound.h).
+Pose target_pose(const Robot& robot);
+
 }  // namespace disco

@@ -1,11 +1,13 @@
 #include "core/model/contact_friction.h"
 
+#include <cmath>
+
 #include "core/util/numbers.h"
 
 namespace disco {
 
 void add_contact_friction(Layout& L, PolynomialProgram& P) {
-  const Scene& s = L.scene();
+  const Scene& s = L.model_scene();
   L.for_each_contact_step([&](int t, int p) {
     if (!L.has_contact_friction(p)) return;
     const Pair& pr = s.pairs[p];
@@ -30,7 +32,7 @@ void add_contact_friction(Layout& L, PolynomialProgram& P) {
 
     // mu c_n - alpha_1 - alpha_2.
     const int r3 = P.add_row(-kInf, kInf, tag);
-    P.add(r3, 1.0, pr.mu * L.normal_force(p, t) - L.alpha1(p, t) - L.alpha2(p, t));
+    P.add(r3, 1.0, pr.mu * L.normal_multiplier(p, t) - L.alpha1(p, t) - L.alpha2(p, t));
     P.add_pair(ComplementaritySide::variable(L.contact_gamma_index(p, t)),
                ComplementaritySide::row(r3));
 
@@ -43,6 +45,37 @@ void add_contact_friction(Layout& L, PolynomialProgram& P) {
     P.add(L.momentum_row(pr.j, t, 2), Rj, L.step(), o, slip);
     P.add(L.momentum_row(pr.i, t, 2), Ri, L.step(), o, slip);
   });
+}
+
+double sliding_velocity(const Layout& L, const ConstVectorRef& z, int pair, int t) {
+  const Scene& s = L.model_scene();
+  const Pair& pr = s.pairs[pair];
+  auto value = [&](const Affine& a) { return a.value(z); };
+  const double o = std::hypot(value(L.normal(pair, t, 0)), value(L.normal(pair, t, 1)));
+  double vT = -o * (s.robots[pr.j].radius * value(L.state(pr.j, t + 1, kOmega)) +
+                    s.robots[pr.i].radius * value(L.state(pr.i, t + 1, kOmega)));
+  for (int a = 0; a < 2; ++a) {
+    const int vel = a == 0 ? kVx : kVy;
+    vT += value(L.tangent(pair, t, a)) * (value(L.state(pr.j, t + 1, vel)) - value(L.state(pr.i, t + 1, vel)));
+  }
+  return vT;
+}
+
+ContactForce contact_force(const Layout& L, const ConstVectorRef& z, int pair, int t) {
+  ContactForce f;
+  if (!L.is_contact(pair) || !L.has_contact(pair, t)) return f;  // no force acts
+  const Scene& s = L.model_scene();
+  const Pair& pr = s.pairs[pair];
+  auto value = [&](const Affine& a) { return a.value(z); };
+  const double cn = value(L.normal_multiplier(pair, t));
+  const double slip = value(L.alpha1(pair, t)) - value(L.alpha2(pair, t));
+  const double o = value(L.centre_distance(pair, t));
+  f.normal = cn * o;
+  f.tangential = slip * o;
+  for (int a = 0; a < 2; ++a) f.on_j[a] = cn * value(L.normal(pair, t, a)) + slip * value(L.tangent(pair, t, a));
+  f.torque_j = -s.robots[pr.j].radius * o * slip;
+  f.torque_i = -s.robots[pr.i].radius * o * slip;
+  return f;
 }
 
 }  // namespace disco

@@ -24,12 +24,36 @@
 // (force -(alpha_1 - alpha_2) T at +R^i n) gives -R^i o (alpha_1 - alpha_2):
 // both torques have the same sign. With these signs friction dissipates:
 // its power (alpha_1 - alpha_2) v_T is never positive.
+//
+// The same quantities at a point z are computed here, once, for every other user (the
+// guesses, RobotProblem::transfer, the solution file): sliding_velocity() and
+// contact_force(). tests/test_model_physics.cpp checks them against the rows.
 #pragma once
+
+#include <array>
 
 #include "core/model/layout.h"
 
 namespace disco {
 
 void add_contact_friction(Layout& L, PolynomialProgram& P);
+
+// v_T of contact pair p over interval t at the point z (model units): T . (v^j - v^i)
+// - o (R^j omega^j + R^i omega^i), with T and o at state t and the velocities at t+1.
+// o is computed from the centres (|N|), so the gap unknown need not exist at t.
+double sliding_velocity(const Layout& L, const ConstVectorRef& z, int pair, int t);
+
+// The contact force between the robots of pair p over interval t at the point z (model
+// units; zero where the pair has no contact unknowns): `normal` c_n o (the push of i on j
+// along the unit vector n from i's centre to j's) and `tangential` (alpha_1 - alpha_2) o
+// (along n turned +90 degrees), `on_j` their sum c_n N + (alpha_1 - alpha_2) T in the
+// world frame (the force on i is its opposite), and the torques -R o (alpha_1 - alpha_2)
+// about each centre.
+struct ContactForce {
+  double normal = 0.0, tangential = 0.0;
+  std::array<double, 2> on_j{0.0, 0.0};
+  double torque_i = 0.0, torque_j = 0.0;
+};
+ContactForce contact_force(const Layout& L, const ConstVectorRef& z, int pair, int t);
 
 }  // namespace disco

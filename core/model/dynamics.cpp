@@ -3,7 +3,7 @@
 namespace disco {
 
 void add_dynamics(Layout& L, PolynomialProgram& P) {
-  const Scene& s = L.scene();
+  const Scene& s = L.model_scene();
   L.for_each_robot_step([&](int t, int i) {
     const Robot& rb = s.robots[i];
     for (int a = 0; a < 2; ++a) {

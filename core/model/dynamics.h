@@ -9,7 +9,7 @@
 // floor-friction, nonpenetration and contact-friction units add their own
 // impulses to the same rows (Layout::momentum_row), so a scene without, say,
 // contact pairs carries no contact terms at all. A robot that does not turn
-// (core/model/adaptive.h) has no rotational row.
+// (core/model/model_plan.h) has no rotational row.
 //
 // Rotational damping. The paper has three forms: Section III-A.2 gives the
 // floor torque -sigma_d M g phi_dot; Appendix A writes "-sigma_d I^j phi" in

@@ -10,6 +10,11 @@
 // polynomial: o enters the contact friction and torque terms as rho + R, never
 // as a square root, and its derivatives stay bounded even where the centres
 // would coincide.
+//
+// clearance() is the least centre distance the model allows a pair, R^i + R^j + d_s
+// (avoid, core/model/avoidance.h) or R^i + R^j (contact: rho >= 0,
+// core/model/nonpenetration.h); the scene parser, the reachability checks, the adaptive
+// plan and the guesses use it.
 #pragma once
 
 #include "core/model/layout.h"
@@ -17,5 +22,12 @@
 namespace disco {
 
 void add_gap(Layout& L, PolynomialProgram& P);
+
+// The gap |p^j - p^i| - R^i - R^j of pair p at state t of the point z, from the centres
+// (model units): defined at every state, whether rho^t is an unknown or not.
+double centre_gap(const Layout& L, const ConstVectorRef& z, int pair, int t);
+
+// R^i + R^j (+ d_s for an avoid pair), in the scene's units.
+double clearance(const Scene& scene, const Pair& pair);
 
 }  // namespace disco

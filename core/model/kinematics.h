@@ -6,7 +6,7 @@
 //     phi^{t+1} - phi^t - h omega^{t+1} = 0,        h = T_f / N.
 // The appendix writes the translational rows; the orientation row is the
 // same scheme applied to phi (Figure 3 reports orientations). A robot that
-// does not turn (core/model/adaptive.h) has no orientation row.
+// does not turn (core/model/model_plan.h) has no orientation row.
 #pragma once
 
 #include "core/model/layout.h"

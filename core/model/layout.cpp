@@ -24,7 +24,7 @@ Layout::Layout(const Scene& s, const ModelPlan& plan, PolynomialProgram& P) : sc
     robots_[i].force.resize(N);
     if (s.robots[i].mu > 0) robots_[i].beta.resize(N);
   }
-  // Which states carry rho and which intervals carry contact unknowns.
+  // Which states carry a gap unknown and which intervals carry contact unknowns.
   std::vector<std::vector<bool>> gap_at(np, std::vector<bool>(N + 1, false));
   std::vector<std::vector<bool>> contact_at(np, std::vector<bool>(N, false));
   for (int p = 0; p < np; ++p) {
@@ -32,7 +32,7 @@ Layout::Layout(const Scene& s, const ModelPlan& plan, PolynomialProgram& P) : sc
     DISCO_CHECK(w.empty() || (1 <= w.first && w.last <= N), "a window lies within 1..N");
     auto& v = pairs_[p];
     v.friction = w.friction;
-    v.rho.assign(N + 1, -1);
+    v.gap.assign(N + 1, -1);
     for (auto* index : {&v.cn, &v.a1, &v.a2, &v.gamma}) index->assign(N, -1);
     if (w.empty()) continue;
     const bool contact = s.pairs[p].mode == PairMode::kContact;
@@ -71,7 +71,7 @@ Layout::Layout(const Scene& s, const ModelPlan& plan, PolynomialProgram& P) : sc
     // without the bound its row (rho + R)^2 = |d|^2 would admit rho + R = -|d|.
     for (int p = 0; p < np; ++p)
       if (gap_at[p][t + 1])
-        pairs_[p].rho[t + 1] = P.add_variable(s.pairs[p].mode == PairMode::kContact ? 0.0 : -kInf, kInf);
+        pairs_[p].gap[t + 1] = P.add_variable(s.pairs[p].mode == PairMode::kContact ? 0.0 : -kInf, kInf);
   }
 }
 
@@ -114,9 +114,9 @@ int Layout::momentum_row(int robot, int t, int axis) const {
   return r;
 }
 
-int Layout::gap_index(int pair, int t) const { return t == 0 ? -1 : pairs_[pair].rho[t]; }
+int Layout::gap_index(int pair, int t) const { return t == 0 ? -1 : pairs_[pair].gap[t]; }
 
-bool Layout::has_gap(int pair, int t) const { return t == 0 || pairs_[pair].rho[t] >= 0; }
+bool Layout::has_gap(int pair, int t) const { return t == 0 || pairs_[pair].gap[t] >= 0; }
 
 Affine Layout::gap(int pair, int t) const {
   DISCO_CHECK(has_gap(pair, t), "the gap of a pair outside its window");
@@ -127,7 +127,7 @@ Affine Layout::gap(int pair, int t) const {
     return Affine(std::hypot(b[kX] - a[kX], b[kY] - a[kY]) - scene_.robots[p.i].radius -
                   scene_.robots[p.j].radius);
   }
-  return Affine::variable(pairs_[pair].rho[t]);
+  return Affine::variable(pairs_[pair].gap[t]);
 }
 
 Affine Layout::centre_distance(int pair, int t) const {

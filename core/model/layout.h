@@ -9,12 +9,12 @@
 //   per robot i, interval t:       F (1 unknown along the force axis if D_ef = 1,
 //                                  else F_x, F_y); floor friction beta_1..beta_K,
 //                                  gamma (only if mu > 0)
-//   per pair p,  state t:          rho, the gap between the disks, at the states of
+//   per pair p,  state t:          the gap rho between the disks, at the states of
 //                                  the pair's window (t = 0: constant)
 //   per contact pair, interval t:  c_n (and alpha_1, alpha_2, gamma with friction)
 //                                  for the intervals ending in the window
 //
-// What exists is decided by a ModelPlan (core/model/adaptive.h): the full
+// What exists is decided by a ModelPlan (core/model/model_plan.h): the full
 // model of Appendix A, or only what the scene needs. For a contact pair with
 // window [first, last], the contact intervals are first-1 .. last-1 (c_n^t
 // pairs with rho^{t+1}) and rho exists at states first-1 .. last (contact
@@ -30,7 +30,7 @@
 #include <cstring>
 #include <vector>
 
-#include "core/model/adaptive.h"
+#include "core/model/model_plan.h"
 #include "core/model/scene.h"
 #include "core/nlp/polynomial_program.h"
 
@@ -42,7 +42,9 @@ class Layout {
   // kind implies: multipliers >= 0, T_f > 0) for a scene in model units.
   Layout(const Scene& model_scene, const ModelPlan& plan, PolynomialProgram& P);
 
-  const Scene& scene() const { return scene_; }
+  // The scene in model units (core/model/units.h); RobotProblem::scene() is the same
+  // scene in SI units, as the user wrote it.
+  const Scene& model_scene() const { return scene_; }
   int steps() const { return scene_.steps; }
 
   int horizon_index() const { return t_f_; }
@@ -75,11 +77,13 @@ class Layout {
   bool has_contact(int pair, int t) const { return pairs_[pair].cn[t] >= 0; }
   bool has_contact_friction(int pair) const { return pairs_[pair].friction; }
   // Contact unknowns of interval t; the constant 0 outside the window (no force acts).
-  Affine normal_force(int pair, int t) const { return contact_value(pairs_[pair].cn, t); }
+  // c_n is the normal force's multiplier, not the force: the push on j is c_n N, of
+  // magnitude c_n o (core/model/nonpenetration.h).
+  Affine normal_multiplier(int pair, int t) const { return contact_value(pairs_[pair].cn, t); }
   Affine alpha1(int pair, int t) const { return contact_value(pairs_[pair].a1, t); }
   Affine alpha2(int pair, int t) const { return contact_value(pairs_[pair].a2, t); }
   Affine contact_gamma(int pair, int t) const { return contact_value(pairs_[pair].gamma, t); }
-  int normal_force_index(int pair, int t) const { return pairs_[pair].cn[t]; }  // -1 if none
+  int normal_multiplier_index(int pair, int t) const { return pairs_[pair].cn[t]; }  // -1 if none
   int alpha1_index(int pair, int t) const { return pairs_[pair].a1[t]; }
   int alpha2_index(int pair, int t) const { return pairs_[pair].a2[t]; }
   int contact_gamma_index(int pair, int t) const { return pairs_[pair].gamma[t]; }
@@ -103,7 +107,7 @@ class Layout {
   void for_each_gap_state(F&& f) const {
     for (int t = 1; t <= steps(); ++t)
       for (int p = 0; p < static_cast<int>(scene_.pairs.size()); ++p)
-        if (pairs_[p].rho[t] >= 0) f(t, p);
+        if (pairs_[p].gap[t] >= 0) f(t, p);
   }
 
   // Momentum rows (axis 0: x, 1: y, 2: rotation) of robot i over interval t;
@@ -136,7 +140,7 @@ class Layout {
   };
   struct PairVars {
     bool friction = false;
-    std::vector<int> rho;                  // [state t], -1: none (t = 0: the constant)
+    std::vector<int> gap;                  // [state t], -1: none (t = 0: the constant)
     std::vector<int> cn, a1, a2, gamma;    // [interval t], -1: none
   };
   Scene scene_;

@@ -2,14 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <vector>
 
+#include "core/model/bounds.h"
+#include "core/model/floor_friction.h"
 #include "core/util/numbers.h"
 
 namespace disco {
 
-double straight_move_time(double distance, double a1, double a2, bool stop_at_end) {
+double bang_bang_time(double distance, double a1, double a2, bool stop_at_end) {
   if (distance <= 0) return 0.0;
   if (a1 <= 0) return kInf;
   if (!stop_at_end) return std::sqrt(2.0 * distance / a1);
@@ -24,7 +25,7 @@ bool straight_move_is_optimal(const Robot& rb, double ux, double uy) {
   return std::abs(std::abs(ux) - std::abs(uy)) < kTol;
 }
 
-std::optional<StraightMove> robot_straight_move(const Robot& rb, double gravity) {
+std::optional<MoveLimits> straight_move_limits(const Robot& rb, double gravity) {
   const auto& s = rb.start;
   if (s[kVx] != 0.0 || s[kVy] != 0.0) return std::nullopt;
   const auto& lo = rb.target.lower;
@@ -33,10 +34,11 @@ std::optional<StraightMove> robot_straight_move(const Robot& rb, double gravity)
   const bool free = lo[kVx] == -kInf && hi[kVx] == kInf && lo[kVy] == -kInf && hi[kVy] == kInf;
   if (!rest && !free) return std::nullopt;
 
-  StraightMove m;
+  MoveLimits m;
   m.stop_at_end = rest;
-  const double dx = std::clamp(s[kX], lo[kX], hi[kX]) - s[kX];
-  const double dy = std::clamp(s[kY], lo[kY], hi[kY]) - s[kY];
+  const Pose to = target_pose(rb);
+  const double dx = to[kX] - s[kX];
+  const double dy = to[kY] - s[kY];
   m.distance = std::hypot(dx, dy);
   if (m.distance == 0.0) return m;
   const double ux = dx / m.distance, uy = dy / m.distance;
@@ -46,24 +48,20 @@ std::optional<StraightMove> robot_straight_move(const Robot& rb, double gravity)
   // Moving along u, maximum dissipation picks the vertex minimising d_k . u:
   // the friction against the motion is mu M g max_k (-d_k . u). (For even K
   // this equals max_k d_k . u; for odd K it does not.)
-  double support = -1.0;
-  for (int k = 0; k < rb.friction_edges; ++k) {
-    const double angle = 2.0 * std::numbers::pi * k / rb.friction_edges;
-    support = std::max(support, -(std::cos(angle) * ux + std::sin(angle) * uy));
-  }
+  const double support = -most_opposed_vertex(rb.friction_edges, ux, uy).dot;
   m.friction = rb.mu * rb.mass * gravity * support;
   m.optimal = straight_move_is_optimal(rb, ux, uy);
   return m;
 }
 
-std::optional<double> robot_straight_time(const Robot& rb, double gravity) {
-  const auto m = robot_straight_move(rb, gravity);
+std::optional<double> straight_move_time(const Robot& rb, double gravity) {
+  const auto m = straight_move_limits(rb, gravity);
   if (!m) return std::nullopt;
   if (m->distance == 0.0) return 0.0;
-  const double a2 = (m->push + m->friction) / rb.mass;
+  const double a2 = m->brake(rb.mass);
   // Off the optimal directions, the provable relaxation: no friction while speeding up.
-  const double a1 = m->optimal ? (m->push - m->friction) / rb.mass : m->push / rb.mass;
-  return straight_move_time(m->distance, a1, a2, m->stop_at_end);
+  const double a1 = m->optimal ? m->accel(rb.mass) : m->push / rb.mass;
+  return bang_bang_time(m->distance, a1, a2, m->stop_at_end);
 }
 
 std::optional<double> scene_lower_bound(const Scene& scene) {
@@ -75,7 +73,7 @@ std::optional<double> scene_lower_bound(const Scene& scene) {
   std::optional<double> best;
   for (size_t i = 0; i < scene.robots.size(); ++i) {
     if (pushable[i]) continue;
-    const auto t = robot_straight_time(scene.robots[i], scene.gravity);
+    const auto t = straight_move_time(scene.robots[i], scene.gravity);
     if (!t) return std::nullopt;  // a robot without a closed form: no bound claimed
     best = std::max(best.value_or(0.0), *t);
   }
@@ -85,7 +83,7 @@ std::optional<double> scene_lower_bound(const Scene& scene) {
 std::optional<double> scene_reference_time(const Scene& scene) {
   std::optional<double> best;
   for (const auto& rb : scene.robots) {
-    const auto t = robot_straight_time(rb, scene.gravity);
+    const auto t = straight_move_time(rb, scene.gravity);
     if (t && std::isfinite(*t)) best = std::max(best.value_or(0.0), *t);
   }
   return best;

@@ -47,28 +47,32 @@
 
 namespace disco {
 
-// Closed form for one straight move from rest with acceleration a_1 and, if
+// The closed form above for one straight move from rest with acceleration a_1 and, if
 // stop_at_end, braking deceleration a_2; +inf if a_1 <= 0.
-double straight_move_time(double distance, double accel, double brake, bool stop_at_end);
+double bang_bang_time(double distance, double accel, double brake, bool stop_at_end);
 
 // Is the straight bang-bang move the robot's optimum along unit direction u?
 bool straight_move_is_optimal(const Robot& robot, double ux, double uy);
 
-// A robot's straight move, from rest to the nearest point of its target position box: its
-// length, the largest push along it and the floor friction against it (both N, as above),
-// whether it ends at rest, and whether it is the robot's optimum (straight_move_is_optimal).
-// Absent (nullopt) exactly when robot_straight_time is. Its own acceleration is
-// (push - friction) / M, its braking (push + friction) / M.
-struct StraightMove {
+// What limits a robot's straight move, from rest to its target pose (target_pose,
+// core/model/bounds.h): its length, the largest push along it and the floor friction
+// against it (both N, as above), whether it ends at rest, and whether it is the robot's
+// optimum (straight_move_is_optimal). Absent (nullopt) exactly when straight_move_time
+// is.
+struct MoveLimits {
   double distance = 0.0;  // m
   double push = 0.0;      // N
   double friction = 0.0;  // N
   bool stop_at_end = true;
   bool optimal = false;
+  double accel(double mass) const { return (push - friction) / mass; }  // a_1
+  double brake(double mass) const { return (push + friction) / mass; }  // a_2
 };
-std::optional<StraightMove> robot_straight_move(const Robot& robot, double gravity);
+std::optional<MoveLimits> straight_move_limits(const Robot& robot, double gravity);
 
-std::optional<double> robot_straight_time(const Robot& robot, double gravity);
+// The robot's own time for its straight move (the closed form; off its optimal
+// directions the relaxation above), absent as straight_move_limits.
+std::optional<double> straight_move_time(const Robot& robot, double gravity);
 std::optional<double> scene_lower_bound(const Scene& scene);
 std::optional<double> scene_reference_time(const Scene& scene);
 

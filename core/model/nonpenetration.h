@@ -2,7 +2,7 @@
 // "0 <= c_n _|_ rho").
 //
 // For every contact pair (i, j) and contact interval t (every t = 0..N-1 in
-// the full model, the pair's window in the adaptive one, core/model/adaptive.h):
+// the full model, the pair's window in the adaptive one, core/model/model_plan.h):
 //     0 <= c_n^t  _|_  rho^{t+1} >= 0
 // and the normal impulse h c_n^t N^t acts on robot j, its opposite on robot i,
 // with N^t = p^j(t) - p^i(t) (not a unit vector: the push has magnitude

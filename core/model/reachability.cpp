@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <utility>
+
+#include "core/model/floor_friction.h"
+#include "core/model/gap.h"
 
 namespace disco {
 namespace {
@@ -40,11 +42,10 @@ bool has_contact_pair(const Scene& scene, int r) {
   return false;
 }
 
-// The friction polygon (vertices at 2 pi k / K) is symmetric about the line along `u`.
+// The robot's floor friction is symmetric about the line along `u` (none, or a
+// polygon symmetric about it).
 bool polygon_symmetric_about(const Robot& rb, double ux, double uy) {
-  if (rb.mu == 0.0) return true;
-  const double steps = std::atan2(uy, ux) * rb.friction_edges / std::numbers::pi;
-  return std::abs(steps - std::round(steps)) < 1e-9;
+  return rb.mu == 0.0 || friction_polygon_symmetric_about(rb.friction_edges, ux, uy);
 }
 
 std::string who(const Scene& scene, int r) { return "robot '" + scene.robots[r].name + "'"; }
@@ -115,7 +116,7 @@ void overlap(const Scene& scene, const Pair& p, std::vector<Unreachable>& out) {
   const double dy = std::max(std::abs(hb[kY] - la[kY]), std::abs(ha[kY] - lb[kY]));
   const double farthest = std::hypot(dx, dy);
   const bool avoid = p.mode == PairMode::kAvoid;
-  const double needed = a.radius + b.radius + (avoid ? p.safe_distance : 0.0);
+  const double needed = clearance(scene, p);
   if (!(farthest < needed * (1.0 - kTol))) return;
   out.push_back({Unreachable::Rule::kOverlap, p.j, p.i,
                  fmt::format("robots '{}' and '{}' ({} pair): their targets keep their centres at "

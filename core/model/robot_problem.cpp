@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <numbers>
 
 #include "core/model/avoidance.h"
 #include "core/model/bounds.h"
@@ -22,84 +21,6 @@ namespace {
 
 // The smallest horizon allowed, in model time units: keeps h > 0.
 constexpr double kHorizonMin = 1e-3;
-
-// The full guess for horizon T (model units) from the positions q[i][t][x, y,
-// phi], t = 1..N, and the exact start state q[i][0]: velocities consistent with
-// the kinematics, floor friction opposing the motion, forces balancing the
-// momentum rows (clipped to their bounds), gaps from the positions, contact
-// forces zero. Completes the velocity components of q.
-Vector guess_from_positions(const Layout& layout, int num_variables,
-                            std::vector<std::vector<State>>& q, double T) {
-  const Scene& s = layout.scene();  // model units
-  const int N = s.steps, nr = static_cast<int>(s.robots.size());
-  const double h = T / N;
-  Vector z = Vector::Zero(num_variables);
-  z[layout.horizon_index()] = T;
-  for (int i = 0; i < nr; ++i)
-    for (int t = 1; t <= N; ++t) {
-      q[i][t][kVx] = (q[i][t][kX] - q[i][t - 1][kX]) / h;
-      q[i][t][kVy] = (q[i][t][kY] - q[i][t - 1][kY]) / h;
-      q[i][t][kOmega] = (q[i][t][kPhi] - q[i][t - 1][kPhi]) / h;
-      if (!layout.rotates(i)) q[i][t][kPhi] = q[i][0][kPhi], q[i][t][kOmega] = 0.0;
-      for (int c = 0; c < kStateSize; ++c)
-        if (const int k = layout.state_index(i, t, c); k >= 0) z[k] = q[i][t][c];
-    }
-  // Floor friction opposing v^{t+1}, and the force that balances momentum.
-  for (int i = 0; i < nr; ++i) {
-    const Robot& rb = s.robots[i];
-    for (int t = 0; t < N; ++t) {
-      const double vx = q[i][t + 1][kVx], vy = q[i][t + 1][kVy];
-      double friction[2] = {0.0, 0.0};
-      if (layout.has_floor_friction(i)) {
-        int best = 0;
-        double lowest = kInf;
-        for (int k = 0; k < rb.friction_edges; ++k) {
-          const double a = 2.0 * std::numbers::pi * k / rb.friction_edges;
-          const double dv = std::cos(a) * vx + std::sin(a) * vy;
-          if (dv < lowest) lowest = dv, best = k;
-        }
-        const bool moving = std::hypot(vx, vy) > 1e-12;
-        const double beta = moving ? rb.mu * rb.mass * s.gravity : 0.0;
-        const double a = 2.0 * std::numbers::pi * best / rb.friction_edges;
-        z[layout.beta_index(i, t, best)] = beta;
-        z[layout.floor_gamma_index(i, t)] = std::max(0.0, -lowest);
-        friction[0] = beta * std::cos(a);
-        friction[1] = beta * std::sin(a);
-      }
-      double f[2];
-      for (int a = 0; a < 2; ++a) {
-        const int vel = a == 0 ? kVx : kVy;
-        f[a] = rb.mass * (q[i][t + 1][vel] - q[i][t][vel]) / h - friction[a];
-      }
-      const auto& idx = layout.force_indices(i, t);
-      if (rb.force_dims == 2) {
-        for (int a = 0; a < 2; ++a) z[idx[a]] = std::clamp(f[a], -rb.force_max, rb.force_max);
-      } else {
-        const double along = f[0] * rb.force_axis[0] + f[1] * rb.force_axis[1];
-        z[idx[0]] = std::clamp(along, -rb.force_max, rb.force_max);
-      }
-    }
-  }
-  // Gaps from positions; contact multipliers: gamma = |v_T| (others zero).
-  for (int p = 0; p < static_cast<int>(s.pairs.size()); ++p) {
-    const Pair& pr = s.pairs[p];
-    const double R = s.robots[pr.i].radius + s.robots[pr.j].radius;
-    for (int t = 1; t <= N; ++t) {
-      if (!layout.has_gap(p, t)) continue;
-      const double nx = q[pr.j][t][kX] - q[pr.i][t][kX], ny = q[pr.j][t][kY] - q[pr.i][t][kY];
-      z[layout.gap_index(p, t)] = std::hypot(nx, ny) - R;
-    }
-    if (!layout.has_contact_friction(p)) continue;
-    for (int t = 0; t < N; ++t) {
-      if (!layout.has_contact(p, t)) continue;
-      const double nx = q[pr.j][t][kX] - q[pr.i][t][kX], ny = q[pr.j][t][kY] - q[pr.i][t][kY];
-      const double vt = -ny * (q[pr.j][t + 1][kVx] - q[pr.i][t + 1][kVx]) +
-                        nx * (q[pr.j][t + 1][kVy] - q[pr.i][t + 1][kVy]);
-      z[layout.contact_gamma_index(p, t)] = std::abs(vt);
-    }
-  }
-  return z;
-}
 
 }  // namespace
 
@@ -169,48 +90,12 @@ std::optional<double> RobotProblem::lower_bound() const { return scene_lower_bou
 
 std::optional<double> RobotProblem::reference_time() const { return scene_reference_time(scene_); }
 
-Vector RobotProblem::straight_line_guess(double seconds) const {
-  const Scene& s = layout_->scene();  // model units
-  const int N = s.steps, nr = static_cast<int>(s.robots.size());
-  // States: t = 0 is the start; positions follow a smoothstep.
-  std::vector<std::vector<State>> q(nr, std::vector<State>(N + 1));
-  for (int i = 0; i < nr; ++i) {
-    const Robot& rb = s.robots[i];
-    State goal = rb.start;
-    for (int c : {kX, kY, kPhi}) goal[c] = std::clamp(rb.start[c], rb.target.lower[c], rb.target.upper[c]);
-    q[i][0] = rb.start;
-    for (int t = 1; t <= N; ++t) {
-      const double tau = static_cast<double>(t) / N, w = tau * tau * (3.0 - 2.0 * tau);
-      for (int c : {kX, kY, kPhi}) q[i][t][c] = rb.start[c] + w * (goal[c] - rb.start[c]);
-    }
-  }
-  return guess_from_positions(*layout_, program_.num_variables(), q, seconds / units_.time);
-}
-
-Vector RobotProblem::guess_from_paths(const std::vector<std::vector<std::array<double, 3>>>& xyphi,
-                                      double seconds) const {
-  const Scene& s = layout_->scene();  // model units
-  const int N = s.steps, nr = static_cast<int>(s.robots.size());
-  DISCO_CHECK(static_cast<int>(xyphi.size()) == nr, "one path per robot");
-  std::vector<std::vector<State>> q(nr, std::vector<State>(N + 1));
-  for (int i = 0; i < nr; ++i) {
-    DISCO_CHECK(static_cast<int>(xyphi[i].size()) == N + 1, "a path has N + 1 points");
-    q[i][0] = s.robots[i].start;  // exact: the start is a constant of the model
-    for (int t = 1; t <= N; ++t) {
-      q[i][t][kX] = xyphi[i][t][0] / units_.length;
-      q[i][t][kY] = xyphi[i][t][1] / units_.length;
-      q[i][t][kPhi] = xyphi[i][t][2];  // angles are unitless
-    }
-  }
-  return guess_from_positions(*layout_, program_.num_variables(), q, seconds / units_.time);
-}
-
 Vector RobotProblem::transfer(const Vector& z, const RobotProblem& to) const {
   const Layout& A = *layout_;
   const Layout& B = to.layout();
-  const Scene& s = A.scene();
+  const Scene& s = A.model_scene();
   DISCO_CHECK(z.size() == program_.num_variables(), "a point of this model");
-  DISCO_CHECK(B.scene().robots.size() == s.robots.size() && B.scene().pairs.size() == s.pairs.size() &&
+  DISCO_CHECK(B.model_scene().robots.size() == s.robots.size() && B.model_scene().pairs.size() == s.pairs.size() &&
                   B.steps() == A.steps() && to.units_.length == units_.length &&
                   to.units_.time == units_.time,
               "a model of the same scene");
@@ -235,15 +120,12 @@ Vector RobotProblem::transfer(const Vector& z, const RobotProblem& to) const {
     }
   }
   for (int p = 0; p < np; ++p) {
-    const Pair& pr = s.pairs[p];
-    const double R = s.robots[pr.i].radius + s.robots[pr.j].radius;
     for (int t = 1; t <= N; ++t) {
       if (!B.has_gap(p, t)) continue;
-      put(B.gap_index(p, t), A.has_gap(p, t) ? value(A.gap(p, t))
-                                             : std::hypot(value(A.normal(p, t, 0)), value(A.normal(p, t, 1))) - R);
+      put(B.gap_index(p, t), A.has_gap(p, t) ? value(A.gap(p, t)) : centre_gap(A, z, p, t));
     }
     for (int t = 0; t < N; ++t) {
-      put(B.normal_force_index(p, t), value(A.normal_force(p, t)));
+      put(B.normal_multiplier_index(p, t), value(A.normal_multiplier(p, t)));
       put(B.alpha1_index(p, t), value(A.alpha1(p, t)));
       put(B.alpha2_index(p, t), value(A.alpha2(p, t)));
       if (B.contact_gamma_index(p, t) < 0) continue;
@@ -252,14 +134,7 @@ Vector RobotProblem::transfer(const Vector& z, const RobotProblem& to) const {
         continue;
       }
       // No friction acts: gamma >= |v_T| satisfies both rows; take the least.
-      const double o = std::hypot(value(A.normal(p, t, 0)), value(A.normal(p, t, 1)));
-      double vT = -o * (s.robots[pr.j].radius * value(A.state(pr.j, t + 1, kOmega)) +
-                        s.robots[pr.i].radius * value(A.state(pr.i, t + 1, kOmega)));
-      for (int a = 0; a < 2; ++a) {
-        const int vel = a == 0 ? kVx : kVy;
-        vT += value(A.tangent(p, t, a)) * (value(A.state(pr.j, t + 1, vel)) - value(A.state(pr.i, t + 1, vel)));
-      }
-      out[B.contact_gamma_index(p, t)] = std::abs(vT);
+      out[B.contact_gamma_index(p, t)] = std::abs(sliding_velocity(A, z, p, t));
     }
   }
   return out;

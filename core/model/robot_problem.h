@@ -10,17 +10,17 @@
 // The horizon T_f is an unknown with bounds: fix_horizon() pins it (the
 // feasibility phase), limit_horizon() bounds it above (objective reduction),
 // never above the largest horizon T_max of the ModelOptions. The adaptive
-// model (core/model/adaptive.h) builds only what a scene needs up to T_max;
+// model (core/model/model_plan.h) builds only what a scene needs up to T_max;
 // set_horizon_max() rebuilds it for another T_max. All times given to or
-// returned by this class are in seconds (SI).
+// returned by this class are in seconds (SI). The initial guesses of the
+// solves are made in search/guess.h.
 #pragma once
 
-#include <array>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "core/model/adaptive.h"
+#include "core/model/model_plan.h"
 #include "core/model/layout.h"
 #include "core/model/scene.h"
 #include "core/model/units.h"
@@ -70,22 +70,9 @@ class RobotProblem {
   std::optional<double> lower_bound() const;      // seconds (core/model/lower_bound.h)
   std::optional<double> reference_time() const;   // seconds: a scale, not a bound
 
-  // The straight-line guess for horizon T: smoothstep positions from the start
-  // to the nearest target point, velocities consistent with the kinematics,
-  // friction opposing the motion, forces balancing the momentum rows (clipped
-  // to their bounds), gaps from the positions, contact forces zero.
-  Vector straight_line_guess(double seconds) const;
-  // The same completion for given position paths: xyphi[i][t] = (x, y, phi)
-  // of robot i at t = 0..N, in SI units (metres, radians). Entry t = 0 is not
-  // used: the start state is a constant of the model and is taken exactly.
-  // Everything else (velocities, friction, forces, gaps) follows the paths as
-  // in straight_line_guess, which is this with smoothstep paths.
-  Vector guess_from_paths(const std::vector<std::vector<std::array<double, 3>>>& xyphi,
-                          double seconds) const;
-
   // The point of `to` (the same scene, another plan: e.g. the full model) that
   // the point z of this model describes. Unknowns both have are copied; those
-  // only `to` has take the values the plan proves (core/model/adaptive.h):
+  // only `to` has take the values the plan proves (core/model/model_plan.h):
   // gaps from the centres, contact forces and friction multipliers 0, contact
   // gamma = |v_T| (core/model/contact_friction.h), phi = phi^0 and omega = 0. Certifying the result on
   // `to` checks the adaptive model's answer on the full model.

@@ -21,6 +21,9 @@ enum StateIndex { kX = 0, kY = 1, kPhi = 2, kVx = 3, kVy = 4, kOmega = 5 };
 inline constexpr int kStateSize = 6;
 using State = std::array<double, kStateSize>;
 
+// A robot's position and orientation (x, y, phi): what a path of a guess gives per state.
+using Pose = std::array<double, 3>;
+
 // A closed interval per state component; -inf / +inf where unbounded.
 struct StateBox {
   State lower{-kInf, -kInf, -kInf, -kInf, -kInf, -kInf};

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/config/yaml_nodes.h"
+#include "core/model/gap.h"
 #include "core/model/reachability.h"
 #include "core/util/errors.h"
 
@@ -537,7 +538,7 @@ void check_start_clearance(const Doc& doc, const YAML::Node& robots_node, const 
                names + " overlap at the start: centre distance " + show(dist) +
                    " < R_i + R_j = " + show(touch));
     }
-    const double clear = touch + p.safe_distance;
+    const double clear = clearance(scene, p);
     if (p.mode == PairMode::kAvoid && dist < clear * (1 - kTouchTolerance)) {
       doc.fail(at, path,
                names + " (an avoid pair) start too close: centre distance " + show(dist) +

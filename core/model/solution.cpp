@@ -6,9 +6,11 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <numbers>
 #include <stdexcept>
 
+#include "core/model/contact_friction.h"
+#include "core/model/floor_friction.h"
+#include "core/model/gap.h"
 #include "core/model/lower_bound.h"
 #include "core/util/provenance.h"
 
@@ -25,7 +27,6 @@ json state_json(const State& s) { return json(std::vector<double>(s.begin(), s.e
 
 json solution_json(const RobotProblem& problem, const Vector& z, const SolutionInfo& info) {
   const Scene& si = problem.scene();
-  const Scene& ms = problem.layout().scene();
   const Layout& L = problem.layout();
   const Units& u = problem.units();
   const int N = si.steps;
@@ -35,15 +36,15 @@ json solution_json(const RobotProblem& problem, const Vector& z, const SolutionI
 
   json doc;
   doc["scenario"] = si.name;
-  doc["status"] = info.status;
+  doc["status"] = to_string(info.status);
   if (!info.detail.empty()) doc["status_detail"] = info.detail;
-  if (info.status != "solved") {
+  if (info.status != MpccStatus::kSolved) {
     json v = json::array();
     for (const auto& w : info.violations)
       v.push_back({{"owner", w.owner}, {"family", w.family}, {"amount", w.amount}});
     doc["violations"] = v;
   }
-  if (!info.stationarity.empty()) doc["stationarity"] = info.stationarity;
+  if (info.stationarity) doc["stationarity"] = to_string(*info.stationarity);
   doc["T_f"] = has ? json(problem.horizon(z)) : json(nullptr);
   doc["N_t"] = N;
   doc["h"] = has ? json(problem.horizon(z) / N) : json(nullptr);
@@ -87,28 +88,21 @@ json solution_json(const RobotProblem& problem, const Vector& z, const SolutionI
                {"safe_distance", pr.safe_distance},
                {"mu", pr.mu}};
     if (has) {
-      std::vector<double> dist(N + 1), fn(N, 0.0), ft(N, 0.0);
-      const double Ri = ms.robots[pr.i].radius, Rj = ms.robots[pr.j].radius;
+      std::vector<double> gap(N + 1), fn(N, 0.0), ft(N, 0.0);
       for (int t = 0; t <= N; ++t)  // from the centres: outside its window a pair has no gap unknown
-        dist[t] = (std::hypot(value(L.normal(p, t, 0)), value(L.normal(p, t, 1))) - Ri - Rj) * u.length;
-      if (L.is_contact(p)) {
-        for (int t = 0; t < N; ++t) {
-          if (!L.has_contact(p, t)) continue;  // no force acts
-          const double cn = value(L.normal_force(p, t));
-          const double slip = value(L.alpha1(p, t)) - value(L.alpha2(p, t));
-          const double o = value(L.centre_distance(p, t));
-          fn[t] = cn * o * u.force();
-          ft[t] = slip * o * u.force();
-          for (int a = 0; a < 2; ++a) {
-            const double f = cn * value(L.normal(p, t, a)) + slip * value(L.tangent(p, t, a));
-            contact[pr.j][t][a] += f;
-            contact[pr.i][t][a] -= f;
-          }
-          contact[pr.j][t][2] += -Rj * o * slip;
-          contact[pr.i][t][2] += -Ri * o * slip;
+        gap[t] = centre_gap(L, z, p, t) * u.length;
+      for (int t = 0; t < N; ++t) {
+        const ContactForce f = contact_force(L, z, p, t);  // zero where no force acts
+        fn[t] = f.normal * u.force();
+        ft[t] = f.tangential * u.force();
+        for (int a = 0; a < 2; ++a) {
+          contact[pr.j][t][a] += f.on_j[a];
+          contact[pr.i][t][a] -= f.on_j[a];
         }
+        contact[pr.j][t][2] += f.torque_j;
+        contact[pr.i][t][2] += f.torque_i;
       }
-      jp["distance"] = dist;
+      jp["distance"] = gap;
       jp["normal_force"] = fn;
       jp["tangential_force"] = ft;
     } else {
@@ -138,18 +132,12 @@ json solution_json(const RobotProblem& problem, const Vector& z, const SolutionI
         jr[kNames[c]] = v;
       }
       std::vector<double> fx(N), fy(N), wx(N, 0.0), wy(N, 0.0), cx(N), cy(N), ct(N);
-      const Robot& mr = ms.robots[i];
       for (int t = 0; t < N; ++t) {
         fx[t] = value(L.force(i, t, 0)) * u.force();
         fy[t] = value(L.force(i, t, 1)) * u.force();
-        if (L.has_floor_friction(i)) {
-          for (int k = 0; k < mr.friction_edges; ++k) {
-            const double a = 2.0 * std::numbers::pi * k / mr.friction_edges;
-            const double b = value(L.beta(i, t, k)) * u.force();
-            wx[t] += b * std::cos(a);
-            wy[t] += b * std::sin(a);
-          }
-        }
+        const std::array<double, 2> w = floor_friction_force(L, z, i, t);
+        wx[t] = w[0] * u.force();
+        wy[t] = w[1] * u.force();
         cx[t] = contact[i][t][0] * u.force();
         cy[t] = contact[i][t][1] * u.force();
         ct[t] = contact[i][t][2] * u.torque();

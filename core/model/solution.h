@@ -38,9 +38,9 @@
 namespace disco {
 
 struct SolutionInfo {
-  std::string status;  // "solved", "infeasible", "failed"
+  MpccStatus status = MpccStatus::kFailed;  // the file's "status": to_string(status)
   std::string detail;  // when not solved: the last feasibility solve's own status
-  std::string stationarity;  // when solved: what the point is known to be for min T_f
+  std::optional<Stationarity> stationarity;  // when solved: what the point is for min T_f
   // When not solved: where the last feasibility attempt's point breaks the model, largest
   // first (RobotProblem::violations).
   std::vector<RobotProblem::Violation> violations;

@@ -7,12 +7,15 @@
 namespace disco {
 namespace {
 
-// Runs an evaluation: any exception or non-finite output becomes `false`.
+// Runs an evaluation: any exception or non-finite output becomes `false`, except a
+// failed internal check (core/util/check.h), which is a bug and goes on up.
 template <class Eval>
 bool guarded(Eval&& eval, const VectorRef* out) {
   bool ok = false;
   try {
     ok = eval();
+  } catch (const InternalError&) {
+    throw;
   } catch (const std::exception&) {
     return false;
   } catch (...) {

@@ -16,9 +16,11 @@
 //   pattern entry may hold an exact zero. Patterns never change after
 //   construction, and may not repeat an entry.
 //
-// Public evaluation is non-virtual: it checks sizes (a programming error aborts),
-// calls the private implementation, and turns every exception and every
-// non-finite value into `false`, so nothing of the kind can reach a solver.
+// Public evaluation is non-virtual: it checks sizes (a failed check throws
+// InternalError, core/util/check.h), calls the private implementation, and turns
+// every other exception and every non-finite value into `false`. An InternalError
+// (a bug, not a bad point) goes on up; the Ipopt adapter keeps it out of Ipopt and
+// rethrows it after the solve (core/ipopt/ipopt_solver.h).
 // (The shape follows Drake's solvers: checked public calls around a private
 // implementation.)
 #pragma once

@@ -1,4 +1,4 @@
-#include "core/model/adaptive.h"
+#include "core/model/model_plan.h"
 
 #include <algorithm>
 #include <array>
@@ -6,6 +6,8 @@
 #include <numbers>
 #include <numeric>
 
+#include "core/model/floor_friction.h"
+#include "core/model/gap.h"
 #include "core/util/check.h"
 
 namespace disco {
@@ -70,7 +72,7 @@ std::vector<std::vector<double>> speed_bounds(const Scene& s, double h) {
   auto force_bound = [](const Robot& rb) { return std::sqrt(double(rb.force_dims)) * rb.force_max; };
   // M a = Fbar - mu M g cos(pi / K): the largest net push along the motion.
   auto net_push = [&](const Robot& rb) {
-    return force_bound(rb) - rb.mu * rb.mass * s.gravity * std::cos(std::numbers::pi / rb.friction_edges);
+    return force_bound(rb) - rb.mu * rb.mass * s.gravity * least_dissipation_ratio(rb.friction_edges);
   };
   for (int i = 0; i < nr; ++i) {
     const Robot& rb = s.robots[i];
@@ -147,7 +149,7 @@ ModelPlan plan_model(const Scene& s, bool adaptive, double horizon_max) {
     for (int p = 0; p < np; ++p) {
       const Pair& pr = s.pairs[p];
       const double R = s.robots[pr.i].radius + s.robots[pr.j].radius;
-      const double reach = R + (pr.mode == PairMode::kAvoid ? pr.safe_distance : 0.0) + kReachMargin * R;
+      const double reach = clearance(s, pr) + kReachMargin * R;
       int first = N + 1, last = 0;
       for (int t = 1; t <= N; ++t) {
         const auto a = regions(pr.i, t), b = regions(pr.j, t);

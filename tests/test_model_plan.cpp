@@ -1,4 +1,4 @@
-// Tests of the scene-adaptive model (core/model/adaptive.h): what it leaves
+// Tests of the scene-adaptive model (core/model/model_plan.h): what it leaves
 // out, that what it leaves out is provably idle (on certified solutions of the
 // FULL model, which knows nothing of the plan), and that it solves to the same
 // T_f.
@@ -10,7 +10,7 @@
 
 #include "core/config/settings.h"
 #include "core/config/solver_settings.h"
-#include "core/model/adaptive.h"
+#include "core/model/model_plan.h"
 #include "core/model/robot_problem.h"
 #include "core/model/scene_yaml.h"
 #include "search/solve_scene.h"
@@ -48,7 +48,7 @@ int count_unknowns(const Layout& L, int pair) {
   for (int t = 0; t <= L.steps(); ++t) {
     n += L.gap_index(pair, t) >= 0;
     if (t == L.steps()) break;
-    for (int k : {L.normal_force_index(pair, t), L.alpha1_index(pair, t), L.alpha2_index(pair, t),
+    for (int k : {L.normal_multiplier_index(pair, t), L.alpha1_index(pair, t), L.alpha2_index(pair, t),
                   L.contact_gamma_index(pair, t)})
       n += k >= 0;
   }
@@ -117,7 +117,7 @@ TEST(AdaptiveModel, FrictionlessContactPairsHaveOnlyNormalForces) {
   EXPECT_FALSE(adaptive.layout().has_contact_friction(0));
   EXPECT_TRUE(full.layout().has_contact_friction(0));
   for (int t = 0; t < s.steps; ++t) {
-    EXPECT_GE(adaptive.layout().normal_force_index(0, t), 0);
+    EXPECT_GE(adaptive.layout().normal_multiplier_index(0, t), 0);
     EXPECT_LT(adaptive.layout().alpha1_index(0, t), 0);
     EXPECT_EQ(adaptive.layout().alpha1(0, t).value(Vector()), 0.0);
   }
@@ -193,7 +193,7 @@ void expect_plan_holds_on_full_solution(const Scene& scene) {
   const RobotProblem& rp = *full.problem;
   EXPECT_FALSE(rp.options().adaptive);
   const Layout& L = rp.layout();
-  const Scene& ms = L.scene();  // model units
+  const Scene& ms = L.model_scene();  // model units
   const int N = ms.steps;
   const double T_max = rp.options().horizon_max / rp.units().time;  // the feasibility horizon
   const double h = full.z[L.horizon_index()] / N;

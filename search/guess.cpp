@@ -1,0 +1,390 @@
+#include "search/guess.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "core/model/bounds.h"
+#include "core/model/contact_friction.h"
+#include "core/model/floor_friction.h"
+#include "core/model/gap.h"
+#include "core/model/lower_bound.h"
+#include "core/util/check.h"
+#include "core/util/numbers.h"
+
+namespace disco {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+double smoothstep(double tau) { return tau * tau * (3.0 - 2.0 * tau); }
+// tau with smoothstep(tau) = w, for w in [0, 1].
+double inverse_smoothstep(double w) { return 0.5 - std::sin(std::asin(1.0 - 2.0 * w) / 3.0); }
+
+
+}  // namespace
+
+namespace {
+
+// complete_guess for paths in model units (`length` 1) or in SI (`length` the unit of
+// length), at the horizon T in model units.
+Vector complete_paths(const RobotProblem& problem, const Paths& paths, double length, double T) {
+  const Layout& layout = problem.layout();
+  const Scene& s = layout.model_scene();
+  const int N = s.steps, nr = static_cast<int>(s.robots.size());
+  DISCO_CHECK(static_cast<int>(paths.size()) == nr, "one path per robot");
+  const double h = T / N;
+  // The states in model units: t = 0 is the start (a constant of the model, exact).
+  std::vector<std::vector<State>> q(nr, std::vector<State>(N + 1));
+  for (int i = 0; i < nr; ++i) {
+    DISCO_CHECK(static_cast<int>(paths[i].size()) == N + 1, "a path has N + 1 poses");
+    q[i][0] = s.robots[i].start;
+    for (int t = 1; t <= N; ++t) {
+      q[i][t][kX] = paths[i][t][0] / length;
+      q[i][t][kY] = paths[i][t][1] / length;
+      q[i][t][kPhi] = paths[i][t][2];  // angles are unitless
+    }
+  }
+  Vector z = Vector::Zero(problem.program().num_variables());
+  z[layout.horizon_index()] = T;
+  for (int i = 0; i < nr; ++i)
+    for (int t = 1; t <= N; ++t) {
+      q[i][t][kVx] = (q[i][t][kX] - q[i][t - 1][kX]) / h;
+      q[i][t][kVy] = (q[i][t][kY] - q[i][t - 1][kY]) / h;
+      q[i][t][kOmega] = (q[i][t][kPhi] - q[i][t - 1][kPhi]) / h;
+      if (!layout.rotates(i)) q[i][t][kPhi] = q[i][0][kPhi], q[i][t][kOmega] = 0.0;
+      for (int c = 0; c < kStateSize; ++c)
+        if (const int k = layout.state_index(i, t, c); k >= 0) z[k] = q[i][t][c];
+    }
+  // Floor friction opposing v^{t+1}, and the force that balances momentum.
+  for (int i = 0; i < nr; ++i) {
+    const Robot& rb = s.robots[i];
+    for (int t = 0; t < N; ++t) {
+      const double vx = q[i][t + 1][kVx], vy = q[i][t + 1][kVy];
+      double friction[2] = {0.0, 0.0};
+      if (layout.has_floor_friction(i)) {
+        const FrictionVertex v = most_opposed_vertex(rb.friction_edges, vx, vy);
+        const bool moving = std::hypot(vx, vy) > 1e-12;
+        const double beta = moving ? rb.mu * rb.mass * s.gravity : 0.0;
+        const std::array<double, 2> d = friction_direction(v.k, rb.friction_edges);
+        z[layout.beta_index(i, t, v.k)] = beta;
+        z[layout.floor_gamma_index(i, t)] = std::max(0.0, -v.dot);
+        friction[0] = beta * d[0];
+        friction[1] = beta * d[1];
+      }
+      double f[2];
+      for (int a = 0; a < 2; ++a) {
+        const int vel = a == 0 ? kVx : kVy;
+        f[a] = rb.mass * (q[i][t + 1][vel] - q[i][t][vel]) / h - friction[a];
+      }
+      const auto& idx = layout.force_indices(i, t);
+      if (rb.force_dims == 2) {
+        for (int a = 0; a < 2; ++a) z[idx[a]] = std::clamp(f[a], -rb.force_max, rb.force_max);
+      } else {
+        const double along = f[0] * rb.force_axis[0] + f[1] * rb.force_axis[1];
+        z[idx[0]] = std::clamp(along, -rb.force_max, rb.force_max);
+      }
+    }
+  }
+  // Gaps from the positions; contact multipliers zero but gamma = |v_T|.
+  for (int p = 0; p < static_cast<int>(s.pairs.size()); ++p) {
+    for (int t = 1; t <= N; ++t)
+      if (layout.has_gap(p, t)) z[layout.gap_index(p, t)] = centre_gap(layout, z, p, t);
+    if (!layout.has_contact_friction(p)) continue;
+    for (int t = 0; t < N; ++t)
+      if (layout.has_contact(p, t))
+        z[layout.contact_gamma_index(p, t)] = std::abs(sliding_velocity(layout, z, p, t));
+  }
+  return z;
+}
+
+}  // namespace
+
+Vector complete_guess(const RobotProblem& problem, const Paths& paths, double seconds) {
+  return complete_paths(problem, paths, problem.units().length, seconds / problem.units().time);
+}
+
+double StraightMove::length() const { return std::hypot(to[0] - from[0], to[1] - from[1]); }
+
+StraightMove straight_move(const Robot& rb) {
+  return {{rb.start[kX], rb.start[kY], rb.start[kPhi]}, target_pose(rb)};
+}
+
+std::vector<Conflict> conflicts(const Scene& scene) {
+  std::vector<Conflict> out;
+  for (const Pair& p : scene.pairs) {
+    const StraightMove a = straight_move(scene.robots[p.i]), b = straight_move(scene.robots[p.j]);
+    const double d0x = b.from[0] - a.from[0], d0y = b.from[1] - a.from[1];
+    const double Dx = (b.to[0] - a.to[0]) - d0x, Dy = (b.to[1] - a.to[1]) - d0y;
+    const double DD = Dx * Dx + Dy * Dy;
+    if (!(DD > 0.0)) continue;  // no relative motion: the start distance stays, and it is valid
+    const double w = std::clamp(-(d0x * Dx + d0y * Dy) / DD, 0.0, 1.0);
+    const double closest = std::hypot(d0x + w * Dx, d0y + w * Dy);
+    const double clearance = disco::clearance(scene, p);
+    // Touching at the start is allowed: a relative margin keeps roundoff out.
+    if (!(closest < clearance * (1.0 - 1e-12))) continue;
+    const double len = std::sqrt(DD);
+    out.push_back({p.i, p.j, w, -Dy / len, Dx / len, clearance});
+  }
+  return out;
+}
+
+namespace {
+
+// 0 at tau = 0 and 1, 1 at peak, C^1 (sin^2 on each side).
+double bump(double tau, double peak) {
+  const double u = tau <= peak ? tau / peak : (1.0 - tau) / (1.0 - peak);
+  const double s = std::sin(0.5 * kPi * u);
+  return s * s;
+}
+
+// Offsets of force_dims 1 robots onto their force axis.
+void project(const Robot& rb, double& ox, double& oy) {
+  if (rb.force_dims != 1) return;
+  const double along = ox * rb.force_axis[0] + oy * rb.force_axis[1];
+  ox = along * rb.force_axis[0];
+  oy = along * rb.force_axis[1];
+}
+
+// The paths with timing warp `warp` (tau -> s) and offsets added by `offset`
+// (robot, tau, &ox, &oy); the t = N point is the target point.
+template <class Warp, class Offset>
+Paths build_paths(const Scene& scene, Warp&& warp, Offset&& offset) {
+  const int N = scene.steps, nr = static_cast<int>(scene.robots.size());
+  Paths paths(nr, std::vector<Pose>(N + 1));
+  for (int i = 0; i < nr; ++i) {
+    const Robot& rb = scene.robots[i];
+    const StraightMove m = straight_move(rb);
+    paths[i][0] = m.from;
+    for (int t = 1; t < N; ++t) {
+      const double tau = static_cast<double>(t) / N;
+      const double w = smoothstep(std::clamp(warp(i, tau), 0.0, 1.0));
+      double ox = 0.0, oy = 0.0;
+      offset(i, tau, ox, oy);
+      project(rb, ox, oy);
+      for (int c : {kX, kY, kPhi}) paths[i][t][c] = m.from[c] + w * (m.to[c] - m.from[c]);
+      paths[i][t][kX] += ox;
+      paths[i][t][kY] += oy;
+    }
+    paths[i][N] = m.to;
+  }
+  return paths;
+}
+
+}  // namespace
+
+Paths detour_paths(const Scene& scene, int side) {
+  const std::vector<Conflict> cs = conflicts(scene);
+  auto straight = [](int, double tau) { return tau; };
+  auto offset = [&](int robot, double tau, double& ox, double& oy) {
+    for (const Conflict& c : cs) {
+      if (robot != c.i && robot != c.j) continue;
+      // Peak at the closest approach, kept away from the ends.
+      const double peak = std::clamp(inverse_smoothstep(c.w), 0.15, 0.85);
+      const double a = side * c.clearance * bump(tau, peak) * (robot == c.i ? 1.0 : -1.0);
+      ox += a * c.nx;
+      oy += a * c.ny;
+    }
+  };
+  return build_paths(scene, straight, offset);
+}
+
+Paths yield_paths(const Scene& scene, const StartSpec& start) {
+  const int N = scene.steps, nr = static_cast<int>(scene.robots.size());
+  std::mt19937_64 g = start_generator(start.seed, scene.name, start.index, 1);
+  std::vector<int> order(nr);
+  for (int i = 0; i < nr; ++i) order[i] = i;
+  for (int i = nr - 1; i > 0; --i)  // Fisher-Yates with our own uniform draws
+    std::swap(order[i], order[std::min(i, static_cast<int>((i + 1) * uniform01(g)))]);
+  std::vector<double> clearance(nr * nr, -1.0);  // < 0: the pair does not interact
+  for (const Pair& p : scene.pairs)
+    clearance[p.i * nr + p.j] = clearance[p.j * nr + p.i] = disco::clearance(scene, p);
+  std::vector<StraightMove> moves(nr);
+  for (int i = 0; i < nr; ++i) moves[i] = straight_move(scene.robots[i]);
+  std::vector<double> delay(nr, 0.0);
+  auto at = [&](int i, double d, double tau, int c) {
+    const double w = smoothstep(std::clamp((tau - d) / (1.0 - d), 0.0, 1.0));
+    return moves[i].from[c] + w * (moves[i].to[c] - moves[i].from[c]);
+  };
+  const int samples = 8 * N;
+  for (int k = 0; k < nr; ++k) {
+    const int i = order[k];
+    double best_d = 0.0, best_ratio = -1.0;
+    for (int step = 0; step <= 60; ++step) {
+      const double d = 0.01 * step;
+      double ratio = kInf;  // smallest distance / clearance against the robots placed
+      for (int q = 0; q < k; ++q) {
+        const int j = order[q];
+        if (clearance[i * nr + j] < 0) continue;
+        for (int m = 0; m <= samples; ++m) {
+          const double tau = static_cast<double>(m) / samples;
+          const double dist = std::hypot(at(i, d, tau, kX) - at(j, delay[j], tau, kX),
+                                         at(i, d, tau, kY) - at(j, delay[j], tau, kY));
+          ratio = std::min(ratio, dist / clearance[i * nr + j]);
+        }
+      }
+      if (ratio > best_ratio) best_d = d, best_ratio = ratio;
+      if (ratio >= start.margin) break;
+    }
+    delay[i] = best_d;
+  }
+  auto warp = [&](int robot, double tau) {
+    return std::clamp((tau - delay[robot]) / (1.0 - delay[robot]), 0.0, 1.0);
+  };
+  auto no_offset = [](int, double, double&, double&) {};
+  return build_paths(scene, warp, no_offset);
+}
+
+Paths perturbed_paths(const Scene& scene, const StartSpec& start) {
+  const int nr = static_cast<int>(scene.robots.size());
+  const double p = start.perturbation;
+  std::mt19937_64 g = start_generator(start.seed, scene.name, start.index, 1);
+  struct Shape {
+    std::array<double, 3> lateral, second;  // second: y of a robot that does not move
+    std::array<double, 2> timing;
+  };
+  std::vector<Shape> shapes(nr);
+  for (Shape& s : shapes) {  // the same draws for every robot, moving or not
+    for (double& a : s.lateral) a = uniform(g, -1.0, 1.0);
+    for (double& a : s.second) a = uniform(g, -1.0, 1.0);
+    for (double& c : s.timing) c = uniform(g, -1.0, 1.0);
+  }
+  auto profile = [](const std::array<double, 3>& a, double tau) {
+    double sum = 0.0, norm = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      sum += a[k] * std::sin((k + 1) * kPi * tau);
+      norm += std::abs(a[k]);
+    }
+    return norm > 0.0 ? sum / norm : 0.0;
+  };
+  auto warp = [&](int robot, double tau) {
+    double s = tau;
+    for (int k = 0; k < 2; ++k)
+      s += p * shapes[robot].timing[k] * std::sin((k + 1) * kPi * tau) / ((k + 1) * kPi);
+    return s;
+  };
+  auto offset = [&](int robot, double tau, double& ox, double& oy) {
+    const Robot& rb = scene.robots[robot];
+    const StraightMove m = straight_move(rb);
+    const double L = m.length();
+    if (L > 1e-9 * rb.radius) {
+      const double a = p * L * profile(shapes[robot].lateral, tau);
+      ox += a * -(m.to[1] - m.from[1]) / L;
+      oy += a * (m.to[0] - m.from[0]) / L;
+    } else {
+      ox += p * rb.radius * profile(shapes[robot].lateral, tau);
+      oy += p * rb.radius * profile(shapes[robot].second, tau);
+    }
+  };
+  return build_paths(scene, warp, offset);
+}
+
+Paths retimed_paths(const RobotProblem& problem, const StartSpec& start, const Vector& z) {
+  const Scene& scene = problem.scene();  // SI
+  const Layout& lay = problem.layout();
+  const int N = scene.steps, nr = static_cast<int>(scene.robots.size());
+  const double L = problem.units().length;
+  const double p = start.perturbation;
+  std::mt19937_64 g = start_generator(start.seed, scene.name, start.index, 1);
+  Paths paths(nr, std::vector<Pose>(N + 1));
+  for (int i = 0; i < nr; ++i) {
+    std::array<double, 2> c;
+    for (double& a : c) a = uniform(g, -1.0, 1.0);
+    // The feasible path, SI.
+    std::vector<Pose> old(N + 1);
+    old[0] = {scene.robots[i].start[kX], scene.robots[i].start[kY], scene.robots[i].start[kPhi]};
+    for (int t = 1; t <= N; ++t)
+      old[t] = {lay.state(i, t, kX).value(z) * L, lay.state(i, t, kY).value(z) * L,
+                lay.state(i, t, kPhi).value(z)};
+    paths[i][0] = old[0];
+    for (int t = 1; t < N; ++t) {
+      const double tau = static_cast<double>(t) / N;
+      double s = tau;
+      for (int k = 0; k < 2; ++k) s += p * c[k] * std::sin((k + 1) * kPi * tau) / ((k + 1) * kPi);
+      const double u = N * std::clamp(s, 0.0, 1.0);
+      const int k = std::min(N - 1, static_cast<int>(std::floor(u)));
+      const double f = u - k;
+      for (int d = 0; d < 3; ++d) paths[i][t][d] = old[k][d] + f * (old[k + 1][d] - old[k][d]);
+    }
+    paths[i][N] = old[N];
+  }
+  return paths;
+}
+
+Vector smoothstep_guess(const RobotProblem& problem, double seconds) {
+  // Made on the scene in model units, as the solver sees it: no round trip through SI.
+  auto straight = [](int, double tau) { return tau; };
+  auto no_offset = [](int, double, double&, double&) {};
+  return complete_paths(problem, build_paths(problem.layout().model_scene(), straight, no_offset),
+                        1.0, seconds / problem.units().time);
+}
+
+Vector straight_guess(const RobotProblem& problem, double seconds) {
+  const Scene& scene = problem.scene();  // SI
+  const int nr = static_cast<int>(scene.robots.size());
+  std::vector<double> switch_at(nr, -1.0);  // < 0: the smoothstep
+  bool any = false;
+  for (int i = 0; i < nr; ++i) {
+    const Robot& rb = scene.robots[i];
+    const auto m = straight_move_limits(rb, scene.gravity);
+    if (!m || m->distance == 0.0) continue;
+    const double a1 = m->accel(rb.mass), a2 = m->brake(rb.mass);
+    // Only where the smoothstep asks too much and a feasible timing exists.
+    if (!(a1 > 0.0) || 6.0 * m->distance / (seconds * seconds) <= a1 ||
+        seconds < bang_bang_time(m->distance, a1, a2, m->stop_at_end))
+      continue;
+    switch_at[i] = m->stop_at_end ? a2 / (a1 + a2) : 1.0;
+    any = true;
+  }
+  if (!any) return smoothstep_guess(problem, seconds);
+  const int N = scene.steps;
+  auto warp = [&](int robot, double tau) {
+    const double s = switch_at[robot];
+    if (s < 0.0) return tau;
+    // Discrete: the distance after step t of the velocity profile min(a_1 k, a_2 (N - k)).
+    const int t = static_cast<int>(std::lround(tau * N));
+    double done = 0.0, all = 0.0;
+    for (int k = 1; k <= N; ++k) {
+      const double v = s < 1.0 ? std::min(k / s, (N - k) / (1.0 - s)) : k;
+      all += v;
+      if (k <= t) done += v;
+    }
+    return inverse_smoothstep(done / all);
+  };
+  auto no_offset = [](int, double, double&, double&) {};
+  return complete_guess(problem, build_paths(scene, warp, no_offset), seconds);
+}
+
+Vector make_guess(const RobotProblem& problem, const StartSpec& start, double seconds) {
+  switch (start.guess) {
+    case GuessKind::kStraight: return straight_guess(problem, seconds);
+    case GuessKind::kPerturbed:
+      return complete_guess(problem, perturbed_paths(problem.scene(), start), seconds);
+    case GuessKind::kDetour:
+      return complete_guess(problem, detour_paths(problem.scene(), start.detour_side), seconds);
+    case GuessKind::kPerturbedFeasible: return smoothstep_guess(problem, seconds);
+    case GuessKind::kYield:
+      return complete_guess(problem, yield_paths(problem.scene(), start), seconds);
+  }
+  return smoothstep_guess(problem, seconds);
+}
+
+Perturbation perturb_feasible(const RobotProblem& problem, const StartSpec& start,
+                              const Vector& feasible) {
+  DISCO_CHECK(feasible.size() == problem.program().num_variables(), "a model point");
+  const double seconds = start.T_scale * problem.horizon(feasible);
+  return {complete_guess(problem, retimed_paths(problem, start, feasible), seconds), seconds};
+}
+
+PerturbFunction make_perturbation(const RobotProblem& problem, const StartSpec& start) {
+  if (start.guess != GuessKind::kPerturbedFeasible) return {};
+  return [&problem, start](const Vector& feasible) {
+    return perturb_feasible(problem, start, feasible);
+  };
+}
+
+
+}  // namespace disco

@@ -1,0 +1,143 @@
+// disco — initial guesses: a position path for every robot, completed into a point of
+// the model.
+//
+// Every guess of disco is made here. A guess is a set of position paths, one Pose
+// (x, y, phi) per robot and state t = 0..N in SI units, made from the robots' straight
+// moves (straight_move: from the start pose to the target pose, core/model/bounds.h) by a
+// timing along the move and offsets across it; complete_guess() turns paths into a full
+// point of the model. The guess kinds of the search's starts (search/start.h) are:
+//
+//   straight            smoothstep_guess(): every robot on w(tau) = tau^2 (3 - 2 tau),
+//                       tau = t / N; straight_guess() (start 0, what `disco solve` runs)
+//                       gives a robot too weak for the smoothstep its own timing (below);
+//   detour              detour_paths(): conflicting robots pass each other on one side;
+//   yield               yield_paths(): robots in a random priority order wait until the
+//                       way is clear;
+//   perturbed           perturbed_paths(): random lateral and timing perturbations;
+//   perturbed feasible  the smoothstep guess, then (step 1b of
+//                       search/objective_reduction.h) the feasible point's own paths
+//                       re-timed (retimed_paths) and re-solved.
+//
+// Paths. Every offset added here vanishes at t = 0 and t = N, and the point at t = N is
+// the target pose exactly. A robot with force_dims 1 cannot push sideways: its offsets
+// are projected on its force axis (only its timing along the axis changes).
+//
+// Conflicts. A pair (i, j) conflicts when, on the straight paths (which share the same
+// timing, so p_j - p_i = d0 + w (dN - d0) is linear in w), the centre distance drops
+// below the pair's clearance R_i + R_j (+ d_s for an avoid pair; core/model/gap.h).
+//
+// Detour. For every conflicting pair, with D = dN - d0 (the relative motion of j seen
+// from i) and n = D turned +90 degrees (unit): i is moved by +side B n b(tau), j by -side
+// B n b(tau), with B the clearance and b a smooth bump, 0 at tau = 0 and 1, peaking
+// (b = 1) at the straight paths' closest approach. So the lateral offset (p_j - p_i) . n
+// changes by -2 side B at the peak: side +1 (left) puts each robot on the other's left
+// (relative to their relative motion), side -1 (right) on its right. The offsets of the
+// two sides are exact mirror images; pairs' offsets add up.
+//
+// Perturbed. Per robot: a lateral offset p L l(tau) along its path's normal (L = path
+// length; a robot that does not move gets p R in x and in y independently, R its
+// radius), with l = sum_k a_k sin(k pi tau) / sum |a_k|, k = 1..3, a_k uniform in
+// [-1, 1]; and a timing warp s(tau) = tau + p sum_k c_k sin(k pi tau) / (k pi), k = 1..2,
+// c_k in [-1, 1], along the path (w(s(tau)) replaces w(tau)), monotone since
+// s' >= 1 - 2 p > 0 for p < 0.5. The shape's random numbers come from stream 1 of the
+// start's generator (search/start.h).
+//
+// Yield. Prioritised planning with waits: the robots, in a random order (Fisher-Yates on
+// stream 1), each keep their straight path and smoothstep timing but wait at the start
+// for a fraction d of the horizon, then move on w((tau - d) / (1 - d)). Each robot takes
+// the smallest d in 0, 0.01, ..., 0.6 for which its centre distance to every robot placed
+// before it, over 8 N samples of tau, stays at least `margin` (drawn in [1, 1.5]) times
+// the pair's clearance; if none does, the d with the largest smallest distance. So at a
+// crossing one robot goes first and the other waits for it, the class of solution a
+// straight or detour guess rarely reaches.
+//
+// Perturbed feasible. The guess is the smoothstep one; the perturbation (step 1b of
+// search/objective_reduction.h) takes each robot's path from the feasible point,
+// (x, y, phi) at t = 0..N (t = 0 the start), and re-times it: state t of the new path is
+// the old path at the continuous step N s(t / N), linearly interpolated between the
+// neighbouring states, with s(tau) = tau + p sum_k c_k sin(k pi tau) / (k pi), k = 1..2,
+// c_k uniform in [-1, 1] per robot (stream 1), p = perturbation: s(0) = 0, s(1) = 1,
+// s' >= 1 - 2 p > 0. The t = N state is the feasible end state exactly (in the target
+// box). Robots get different warps, so their relative timing changes too. The rest
+// follows from the new positions (complete_guess) for the horizon T_scale times the
+// feasible one.
+//
+// Weak robots. The smoothstep asks for accelerations up to 6 L / T^2 (at both ends). A
+// robot whose own acceleration along its move, a_1 = (push - friction) / M
+// (core/model/lower_bound.h, MoveLimits), is smaller at the horizon T cannot follow it:
+// a robot barely stronger than its floor friction. From such a guess the feasibility
+// solve settled on stop-and-go paths (the robot at rest at inner steps, where the
+// friction complementarity is biactive and leaving the stop needs a jump of the friction
+// to mu M g), local optima the reduction never left: configs/stress/weak_force.yaml
+// (F_max = 1.001 mu M g) ended 5.3 % above its optimum. In straight_guess(), at a horizon
+// T from the move's minimum time up to sqrt(6 L / a_1), such a robot moves on the timing
+// of its own fastest move in the model's steps, stretched to T: the distance after step
+// t is the share sum_{k<=t} v_k / sum_{k<=N} v_k of the velocity profile v_k =
+// min(a_1 k, a_2 (N - k)), a_2 = (push + friction) / M (v_k = a_1 k without a stop at
+// the end); its velocity changes stay within a_1 h and a_2 h whenever T is at least the
+// move's minimum time in N steps, and it ends at rest exactly. (The continuous bang-bang
+// timing brakes within the last step, which positions at the steps cannot show: from it
+// the first feasibility solve failed.) At the default horizon (1.5 times the slowest
+// robot's time) the smoothstep is too fast for a robot with push < 2 friction along its
+// move: the paper's robots (push 1.52 friction) but none of the other configs/scenarios/
+// (tests/test_start.cpp checks). Other kinds keep the smoothstep.
+#pragma once
+
+#include <vector>
+
+#include "core/model/robot_problem.h"
+#include "search/objective_reduction.h"
+#include "search/start.h"
+
+namespace disco {
+
+// paths[i][t]: the pose of robot i at state t = 0..N, SI units (metres, radians).
+using Paths = std::vector<std::vector<Pose>>;
+
+// The point of `problem` at horizon `seconds` that follows `paths` (one per robot, N + 1
+// poses each; entry t = 0 is not used: the start is a constant of the model and is taken
+// exactly): velocities from the kinematics (core/model/kinematics.h), floor friction on
+// the vertex most opposed to the motion (core/model/floor_friction.h) at mu M g while
+// moving, forces balancing the momentum rows (clipped to their bounds), gaps from the
+// positions, contact forces zero, contact gamma = |v_T| (core/model/contact_friction.h).
+// phi and omega of a robot that does not turn (core/model/model_plan.h) are its
+// constants.
+Vector complete_guess(const RobotProblem& problem, const Paths& paths, double seconds);
+
+// A robot's straight move: from its start pose to its target pose.
+struct StraightMove {
+  Pose from{}, to{};
+  double length() const;  // of the (x, y) segment
+};
+StraightMove straight_move(const Robot& robot);
+
+// The pairs whose straight paths, timed alike, come closer than their clearance.
+struct Conflict {
+  int i = 0, j = 0;
+  double w = 0.5;             // smoothstep fraction at the closest approach
+  double nx = 0.0, ny = 0.0;  // unit normal of the relative motion
+  double clearance = 0.0;     // R_i + R_j (+ d_s)
+};
+std::vector<Conflict> conflicts(const Scene& scene);
+
+// The guesses, as described above.
+Vector smoothstep_guess(const RobotProblem& problem, double seconds);
+Vector straight_guess(const RobotProblem& problem, double seconds);
+Paths detour_paths(const Scene& scene, int side);
+Paths yield_paths(const Scene& scene, const StartSpec& start);
+Paths perturbed_paths(const Scene& scene, const StartSpec& start);
+Paths retimed_paths(const RobotProblem& problem, const StartSpec& start, const Vector& feasible);
+
+// The initial guess of `start` for horizon `seconds`.
+Vector make_guess(const RobotProblem& problem, const StartSpec& start, double seconds);
+
+// kPerturbedFeasible: the perturbation of the feasible point `feasible` (model-unit z):
+// its paths re-timed, completed, at T_scale times its horizon. Deterministic in
+// (start, feasible).
+Perturbation perturb_feasible(const RobotProblem& problem, const StartSpec& start,
+                              const Vector& feasible);
+// The PerturbFunction for reduce_objective: perturb_feasible for a kPerturbedFeasible
+// start, empty (no step 1b) for every other kind. `problem` must outlive the function.
+PerturbFunction make_perturbation(const RobotProblem& problem, const StartSpec& start);
+
+}  // namespace disco
