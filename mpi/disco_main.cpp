@@ -4,7 +4,7 @@
 //               [--set KEY=VALUE ...] [--model-only] [--quiet | --verbose]
 //   disco search CONFIG... [--starts N] [--seed S] [--time-limit SEC] [--out DIR]
 //                [--resume | --force] [--threads N] [--settings FILE] [--set KEY=VALUE ...]
-//                [--quiet | --verbose]                                   (mpi/coordinator.h)
+//                [--quiet | --verbose]                                   (search/run_search.h)
 //   disco --version
 //
 // Options and the file arguments may come in any order; each --set takes one KEY=VALUE
@@ -25,7 +25,7 @@
 // for every scene); 3 the run ended without one (status infeasible, failed or
 // elastic_not_tight, still written); 2 bad input or usage (the message names the file,
 // line and key); 1 an internal error; 130 / 143 interrupted by SIGINT / SIGTERM (what
-// finished is written; see mpi/coordinator.h). A second signal ends disco at once.
+// finished is written; see search/run_search.h). A second signal ends disco at once.
 #include <mpi.h>
 #include <omp.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
@@ -48,9 +48,10 @@
 #include "core/util/provenance.h"
 #include "core/util/suggest.h"
 #include "core/ipopt/ipopt_solver.h"
-#include "mpi/coordinator.h"
 #include "mpi/live_line.h"
+#include "mpi/mpi_transport.h"
 #include "search/reduction_phases.h"
+#include "search/run_search.h"
 #include "search/solve_scene.h"
 #include "search/start.h"
 
@@ -123,9 +124,8 @@ int run_search_command(SearchOptions o, int threads, const Verbosity& verbosity,
                        const std::shared_ptr<LiveLineSink>& sink, int& argc, char**& argv) {
   int provided = 0;
   MPI_Init_thread(&argc, &argv, MPI_THREAD_SERIALIZED, &provided);
-  int rank = 0, size = 1;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  MpiTransport transport;
+  const int rank = transport.rank(), size = transport.size();
   int code = 0;
   if (size > 1 && provided < MPI_THREAD_SERIALIZED) {
     if (rank == 0) spdlog::error("error: the MPI library does not provide MPI_THREAD_SERIALIZED");
@@ -140,7 +140,7 @@ int run_search_command(SearchOptions o, int threads, const Verbosity& verbosity,
     set_threads(threads);
     install_signal_handlers();
     try {
-      code = run_search(o);
+      code = run_search(o, transport);
     } catch (const InputError& e) {
       if (rank == 0) spdlog::error("error: {}", e.what());
       code = 2;

@@ -6,7 +6,7 @@
 // reduction) and every elastic solve inside it; a start it cuts short is
 // status time_limit, one an interrupt cuts short (core/util/interrupt.h) is
 // status interrupted. Both keep their best point so far (T_f, certificate),
-// and `disco search --resume` runs them again (mpi/coordinator.h).
+// and `disco search --resume` runs them again (search/search_record.h).
 #pragma once
 
 #include <array>

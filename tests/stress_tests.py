@@ -21,7 +21,7 @@ NAME:
   search_nan `disco search` (one process) on overflow (every evaluation at its start point
              overflows) and mu_0: the overflow starts are recorded as failed with Ipopt's
              Invalid_Number_Detected, the search goes on and solves mu_0 at its expected time,
-             and exits 3 (a scene without a solution, mpi/coordinator.h).
+             and exits 3 (a scene without a solution, search/run_search.h).
 """
 import json
 import os

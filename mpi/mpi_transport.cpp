@@ -1,0 +1,55 @@
+#include "mpi/mpi_transport.h"
+
+#include <mpi.h>
+
+namespace disco {
+namespace {
+
+constexpr int kTag[] = {1, 2, 3};  // by MessageKind: kResult, kTask, kStop
+
+int tag_of(MessageKind kind) { return kTag[static_cast<int>(kind)]; }
+MessageKind kind_of(int tag) {
+  for (int k = 0; k < 3; ++k)
+    if (kTag[k] == tag) return static_cast<MessageKind>(k);
+  return MessageKind::kStop;
+}
+
+// Receives the message `probe` found.
+Message receive_probed(const MPI_Status& probe) {
+  int n = 0;
+  MPI_Get_count(&probe, MPI_CHAR, &n);
+  Message m;
+  m.kind = kind_of(probe.MPI_TAG);
+  m.source = probe.MPI_SOURCE;
+  m.body.assign(static_cast<std::size_t>(n), '\0');
+  MPI_Status status;
+  MPI_Recv(m.body.data(), n, MPI_CHAR, probe.MPI_SOURCE, probe.MPI_TAG, MPI_COMM_WORLD, &status);
+  return m;
+}
+
+}  // namespace
+
+MpiTransport::MpiTransport() {
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &size_);
+}
+
+void MpiTransport::send(int to, MessageKind kind, const std::string& body) {
+  MPI_Send(body.data(), static_cast<int>(body.size()), MPI_CHAR, to, tag_of(kind), MPI_COMM_WORLD);
+}
+
+std::optional<Message> MpiTransport::poll() {
+  int ready = 0;
+  MPI_Status probe;
+  MPI_Iprobe(MPI_ANY_SOURCE, tag_of(MessageKind::kResult), MPI_COMM_WORLD, &ready, &probe);
+  if (!ready) return std::nullopt;
+  return receive_probed(probe);
+}
+
+Message MpiTransport::receive() {
+  MPI_Status probe;
+  MPI_Probe(0, MPI_ANY_TAG, MPI_COMM_WORLD, &probe);
+  return receive_probed(probe);
+}
+
+}  // namespace disco

@@ -1,0 +1,120 @@
+#include "search/coordinator.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cstdio>
+
+#include "core/util/interrupt.h"
+
+namespace disco {
+namespace {
+
+using json = nlohmann::json;
+
+// "solved T_f 2.294182", "time limit (search, 20 s): T_f 2.380710 so far",
+// "interrupted: no point yet", "infeasible".
+std::string outcome_words(const StartOutcome& o) {
+  const std::string so_far =
+      o.certified() ? fmt::format("T_f {:.6f} so far", o.T_f) : std::string("no point yet");
+  switch (o.status) {
+    case StartStatus::kSolved: return fmt::format("solved T_f {:.6f}", o.T_f);
+    case StartStatus::kTimeLimit:
+      return fmt::format("time limit ({}, {:.0f} s): {}", to_string(o.budget_source), o.budget, so_far);
+    case StartStatus::kInterrupted: return "interrupted: " + so_far;
+    default: return to_string(o.status);
+  }
+}
+
+std::string clock_text(double s) {
+  const int t = static_cast<int>(s + 0.5);
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%02d:%02d:%02d", t / 3600, t / 60 % 60, t % 60);
+  return buf;
+}
+
+}  // namespace
+
+Coordinator::Coordinator(const SearchPlan& plan, const std::string& out_dir, std::uint64_t seed,
+                         double time_limit, bool resumed)
+    : plan_(plan),
+      t0_(std::chrono::steady_clock::now()),
+      record_(plan, out_dir, seed, resumed),
+      queue_(plan, time_limit, record_.done()) {
+  record_.write_best(queue_, seconds(), interrupt_requested());
+}
+
+double Coordinator::seconds() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+}
+
+int Coordinator::scene_index(const std::string& name) const {
+  for (std::size_t s = 0; s < plan_.scenes.size(); ++s)
+    if (plan_.scenes[s].scene.name == name) return static_cast<int>(s);
+  return -1;
+}
+
+std::optional<Task> Coordinator::next(int rank) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (interrupt_requested()) return std::nullopt;
+  return queue_.next(rank, seconds());
+}
+
+void Coordinator::record(StartOutcome o, const json* solution) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const double now = seconds();
+  o.finished_s = now;
+  const int s = scene_index(o.scene);
+  if (s >= 0) queue_.finished(s, o.start);
+  record_.record(o, solution, now, s >= 0 ? queue_.scene_started(s) : 0.0);
+  record_.write_best(queue_, now, interrupt_requested());
+  spdlog::info("[{}/{}] {} start {} (rank {}): {} in {:.1f} s | best {} | {}", record_.finished(),
+               queue_.total(), o.scene, o.start, o.rank, outcome_words(o), o.seconds,
+               record_.best_summary(s), clock_locked());
+}
+
+Coordinator::Reply Coordinator::on_result(int rank, const std::string& body) {
+  const json msg = json::parse(body);
+  if (msg.contains("outcome"))
+    record(StartOutcome::from_json(msg["outcome"]), msg.contains("solution") ? &msg["solution"] : nullptr);
+  if (const auto t = next(rank)) return {MessageKind::kTask, t->to_json().dump()};
+  return {MessageKind::kStop, ""};
+}
+
+void Coordinator::finish() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  queue_.finish();
+  record_.write_best(queue_, seconds(), interrupt_requested());
+}
+
+bool Coordinator::all_solved() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return record_.all_solved();
+}
+
+Coordinator::Kept Coordinator::kept() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return {record_.finished(), record_.interrupted(), queue_.total(), record_.cut_short()};
+}
+
+std::string Coordinator::status_text() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const double now = seconds();
+  std::string running;
+  for (const auto& [task, r] : queue_.running())
+    running += fmt::format("{}{} #{} r{} {:.0f}s", running.empty() ? "" : ", ",
+                           plan_.scenes[task.first].scene.name, task.second, r.rank, now - r.handed_s);
+  return fmt::format("[{}/{}] {} | best {} | running: {}", record_.finished(), queue_.total(),
+                     clock_locked(), record_.best_summary(-1), running.empty() ? "-" : running);
+}
+
+// The ETA from the mean time per start run here, capped by the time limits left.
+std::string Coordinator::clock_locked() const {
+  const double elapsed = seconds();
+  const int ran_now = record_.finished() - record_.resumed();
+  double eta = ran_now > 0 ? elapsed / ran_now * (queue_.total() - record_.finished()) : 0.0;
+  eta = std::min(eta, queue_.time_left(elapsed));
+  return "elapsed " + clock_text(elapsed) + " ETA " + (ran_now > 0 ? clock_text(eta) : "-");
+}
+
+}  // namespace disco

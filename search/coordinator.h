@@ -1,0 +1,81 @@
+// disco — rank 0 of a search: hands out the tasks (search/task_queue.h), records their
+// outcomes (search/search_record.h) and reports progress.
+//
+// Thread-safe: rank 0's coordinator thread (answering the workers' messages) and its own
+// worker share it. It never calls the transport itself: on_result() turns a worker's
+// message into the reply to send, so the same logic runs over MPI (search/run_search.h)
+// or any other Transport.
+//
+// Progress. After every recorded start, rank 0 logs (info) one line:
+//   [3/6] two_robots_swap_avoid start 0 (rank 0): solved T_f 2.380635 in 1.6 s | best ... |
+//   elapsed 00:00:02 ETA 00:00:02
+// (starts done / total, the start's result, the best T_f per scene, elapsed time, and the
+// ETA from the mean time per start run here, capped by the time limits left); a start cut
+// short says "time limit (search, 20 s): T_f 2.380710 so far" or "interrupted: ...".
+// status_text() is the live status line (mpi/live_line.h): starts done / total, elapsed,
+// ETA, best T_f, and the starts running (scene #start, rank, seconds so far).
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "search/run_start.h"
+#include "search/search_plan.h"
+#include "search/search_record.h"
+#include "search/task_queue.h"
+#include "search/transport.h"
+
+namespace disco {
+
+class Coordinator {
+ public:
+  // The output directory `out_dir` is prepared (search/run_manifest.h); `resumed`: it
+  // holds an earlier run of the same command, whose final starts are skipped.
+  Coordinator(const SearchPlan& plan, const std::string& out_dir, std::uint64_t seed,
+              double time_limit, bool resumed);
+
+  // The next task for `rank`, or none: all handed out, a time limit, or an interrupt.
+  std::optional<Task> next(int rank);
+  // Records a start's outcome: its runs.jsonl line, the scene's best (and its solution
+  // file, when `solution` is given and it is the best), best.json, the progress line.
+  void record(StartOutcome o, const nlohmann::json* solution);
+
+  // A worker's message (MessageKind::kResult from `rank`: "{}" for its first request, else
+  // {"outcome": ..., "solution": ...}) recorded, and the reply: the next task, or kStop.
+  struct Reply {
+    MessageKind kind = MessageKind::kStop;
+    std::string body;
+  };
+  Reply on_result(int rank, const std::string& body);
+
+  // At the end: best.json, with whether a time limit left tasks undone.
+  void finish();
+  std::string status_text();  // the live status line
+  bool all_solved();
+
+  // What this run kept, for the last message.
+  struct Kept {
+    int kept = 0;   // starts with a final outcome in runs.jsonl (this run and earlier ones)
+    int lost = 0;   // starts cut short by an interrupt (their best so far is recorded)
+    int total = 0;  // starts of the plan
+    int cut = 0;    // this run's starts cut short (time limit or interrupt)
+  };
+  Kept kept();
+
+ private:
+  double seconds() const;
+  std::string clock_locked() const;  // "elapsed HH:MM:SS ETA HH:MM:SS"
+  int scene_index(const std::string& name) const;
+
+  const SearchPlan& plan_;
+  std::chrono::steady_clock::time_point t0_;
+  std::mutex mutex_;
+  SearchRecord record_;
+  TaskQueue queue_;
+};
+
+}  // namespace disco

@@ -1,0 +1,196 @@
+#include "search/search_record.h"
+
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include "core/model/lower_bound.h"
+#include "core/model/solution.h"
+#include "core/util/errors.h"
+
+namespace disco {
+
+using json = nlohmann::json;
+
+bool is_final(const StartOutcome& o, const SceneJob& job) {
+  if (o.status == StartStatus::kInterrupted) return false;
+  if (o.status == StartStatus::kTimeLimit)
+    return o.budget_source == BudgetSource::kStart && o.budget == job.start_time_limit;
+  return true;
+}
+
+SearchRecord::SearchRecord(const SearchPlan& plan, const std::string& out_dir, std::uint64_t seed,
+                           bool resumed)
+    : plan_(plan), out_(out_dir), seed_(seed), best_(plan.scenes.size()) {
+  const std::string runs = out_dir + "/runs.jsonl";
+  if (resumed) read_earlier(runs, seed);
+  finished_ = static_cast<int>(done_.size());
+  runs_ = std::fopen(runs.c_str(), resumed ? "a" : "w");
+  if (runs_ == nullptr) throw InputError(runs + ": cannot open for writing");
+}
+
+SearchRecord::~SearchRecord() {
+  if (runs_ != nullptr) std::fclose(runs_);
+}
+
+int SearchRecord::scene_index(const std::string& name) const {
+  for (std::size_t s = 0; s < plan_.scenes.size(); ++s)
+    if (plan_.scenes[s].scene.name == name) return static_cast<int>(s);
+  return -1;
+}
+
+void SearchRecord::record(const StartOutcome& o, const json* solution, double now, double scene_started) {
+  const std::string line = o.to_json().dump() + "\n";
+  std::fputs(line.c_str(), runs_);
+  std::fflush(runs_);
+  ::fsync(fileno(runs_));  // a kill (or a crash) loses no finished start
+  const int s = scene_index(o.scene);
+  if (s >= 0 && is_final(o, plan_.scenes[s])) {
+    ++finished_;
+  } else {
+    ++cut_short_;
+  }
+  if (o.status == StartStatus::kInterrupted) ++interrupted_;
+  if (update(s, o, now, scene_started) && solution != nullptr)
+    write_json_file(out_ + "/best/" + o.scene + ".json", *solution);
+}
+
+// Keeps `o` as its start's outcome (it replaces an earlier one: a start cut short and run
+// again), recounts the scene, and returns whether `o` is now the scene's best.
+bool SearchRecord::update(int s, const StartOutcome& o, double now, double scene_started) {
+  if (s < 0) return false;
+  Best& b = best_[s];
+  b.last_s = now;
+  outcomes_[{s, o.start}] = o;
+  b.run = b.solved = b.cut_short = 0;
+  const StartOutcome* least = nullptr;
+  for (auto it = outcomes_.lower_bound({s, 0}); it != outcomes_.end() && it->first.first == s; ++it) {
+    const StartOutcome& x = it->second;
+    ++b.run;
+    if (!is_final(x, plan_.scenes[s])) ++b.cut_short;
+    if (!x.certified()) continue;
+    ++b.solved;
+    if (least == nullptr || x.T_f < least->T_f) least = &x;  // ties: the lower start (map order)
+  }
+  // Scene times count from the hand-out of the scene's first start, to the
+  // moment a rank found the point: the start was handed out o.seconds ago
+  // and found it its own time_to_first_feasible / time_to_best after that.
+  const double handed = now - o.seconds - std::max(0.0, scene_started);
+  if (o.certified()) {
+    const double feasible = handed + std::max(0.0, o.time_to_first_feasible);
+    if (b.first_feasible_s < 0 || feasible < b.first_feasible_s)
+      b.first_feasible_s = std::max(0.0, feasible);
+  }
+  if (least == nullptr) return false;
+  if (least->start != o.start && b.start == o.start)  // o replaced the best with a worse point
+    spdlog::warn("{}: start {} ended above its earlier best, so start {} is now the best, but "
+                 "best/{}.json still holds start {}'s earlier point", o.scene, o.start,
+                 least->start, o.scene, o.start);
+  b.start = least->start;
+  b.T_f = least->T_f;
+  b.outcome = *least;
+  if (least->start != o.start || !o.certified()) return false;
+  b.best_s = std::max(0.0, handed + std::max(0.0, o.time_to_best));
+  return true;
+}
+
+// The starts runs.jsonl holds a final outcome for (--resume skips them). A start's later
+// line replaces its earlier ones; a start cut short keeps its best so far in the scene's
+// best until it runs again.
+void SearchRecord::read_earlier(const std::string& path, std::uint64_t seed) {
+  std::ifstream in(path);
+  std::string line;
+  int bad = 0;
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    try {
+      const StartOutcome o = StartOutcome::from_json(json::parse(line));
+      const int s = scene_index(o.scene);
+      if (s < 0 || o.start >= plan_.scenes[s].starts || o.seed != seed) continue;
+      update(s, o, 0.0, 0.0);
+    } catch (const std::exception&) {
+      ++bad;  // e.g. a line cut short by a kill
+    }
+  }
+  int again = 0;
+  for (const auto& [key, o] : outcomes_) {
+    if (is_final(o, plan_.scenes[key.first])) {
+      done_.insert(key);
+    } else {
+      ++again;
+    }
+  }
+  // Times of an earlier run are not comparable with this one's clock.
+  for (auto& b : best_) b.first_feasible_s = b.best_s = b.start >= 0 ? 0.0 : -1.0;
+  if (bad > 0) spdlog::warn("{}: skipped {} unreadable line(s)", path, bad);
+  resumed_ = static_cast<int>(done_.size());
+  spdlog::info("resume: {} start(s) already in {}{}", resumed_, path,
+               again > 0 ? fmt::format("; {} cut short there run again", again) : "");
+}
+
+bool SearchRecord::all_solved() const {
+  return std::all_of(best_.begin(), best_.end(), [](const Best& b) { return b.start >= 0; });
+}
+
+std::string SearchRecord::best_summary(int s) const {
+  auto one = [&](std::size_t k) {
+    const Best& b = best_[k];
+    return plan_.scenes[k].scene.name + " " +
+           (b.start >= 0 ? fmt::format("{:.6f}", b.T_f) : std::string("-"));
+  };
+  if (best_.size() > 4) {
+    if (s >= 0) return one(static_cast<std::size_t>(s));
+    const auto solved = std::count_if(best_.begin(), best_.end(), [](const Best& b) { return b.start >= 0; });
+    return fmt::format("{} of {} scenes solved", solved, best_.size());
+  }
+  std::string out;
+  for (std::size_t k = 0; k < best_.size(); ++k) out += (k ? ", " : "") + one(k);
+  return out;
+}
+
+void SearchRecord::write_best(const TaskQueue& queue, double now, bool interrupted) const {
+  json scenes = json::object();
+  for (std::size_t s = 0; s < plan_.scenes.size(); ++s) {
+    const Best& b = best_[s];
+    const double started = queue.scene_started(static_cast<int>(s));
+    json j = {{"starts", plan_.scenes[s].starts},
+              {"starts_run", b.run},
+              {"starts_solved", b.solved},
+              {"starts_cut_short", b.cut_short},
+              {"time_to_first_feasible_s", b.first_feasible_s >= 0 ? json(b.first_feasible_s) : json(nullptr)},
+              {"time_to_best_s", b.best_s >= 0 ? json(b.best_s) : json(nullptr)},
+              {"started_s", started >= 0 ? json(started) : json(nullptr)},
+              {"wall_s", started >= 0 ? json(b.last_s - started) : json(nullptr)},
+              {"time_limit_s", plan_.scenes[s].time_limit},
+              {"time_limit_reached", queue.scene_time_limited(static_cast<int>(s))}};
+    const Scene& scene = plan_.scenes[s].scene;
+    const auto lb = scene_lower_bound(scene), ref = scene_reference_time(scene);
+    j["lower_bound"] = lb && std::isfinite(*lb) ? json(*lb) : json(nullptr);
+    j["reference_time"] = ref ? json(*ref) : json(nullptr);
+    if (b.start >= 0) {
+      j["T_f"] = b.T_f;
+      j["start"] = b.start;
+      j["description"] = b.outcome.description;
+      j["certificate"] = {{"max_violation", b.outcome.max_violation},
+                          {"max_complementarity", b.outcome.max_complementarity}};
+      j["solution"] = "best/" + scene.name + ".json";
+    } else {
+      j["T_f"] = nullptr;
+    }
+    scenes[scene.name] = j;
+  }
+  const json doc = {{"seed", seed_},
+                    {"elapsed_s", now},
+                    {"starts_total", queue.total()},
+                    {"starts_finished", finished_},
+                    {"interrupted", interrupted},
+                    {"time_limit_s", queue.time_limit()},
+                    {"time_limit_reached", queue.time_limited()},
+                    {"scenes", scenes}};
+  write_json_file(out_ + "/best.json", doc);
+}
+
+}  // namespace disco

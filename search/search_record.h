@@ -1,0 +1,98 @@
+// disco — what a search keeps: DIR/runs.jsonl, the best start of every scene,
+// DIR/best.json and DIR/best/SCENE.json (DIR = --out; search/README.md gives the fields).
+//
+//   runs.jsonl      one line per start that ended (search/run_start.h, StartOutcome), also
+//                   a start cut short by a time limit (status time_limit) or an interrupt
+//                   (interrupted), with its best point so far; each line is flushed and
+//                   fsync'ed as it is written, so a kill loses no finished start;
+//   best.json       per scene: the best certified T_f, its start, starts run and solved,
+//                   time to first feasible and to best (from the hand-out of the scene's
+//                   first start); whether a time limit cut the search short;
+//   best/SCENE.json the full solution of the best start (core/model/solution.h).
+//
+// The best of a scene is the smallest certified T_f, ties to the lower start index, so the
+// outcome does not depend on which rank ran what. A start's later line replaces its
+// earlier one (a start cut short and run again by --resume).
+//
+// --resume: the record reads the earlier runs.jsonl first. A start with a final outcome
+// there is done (done()); a start cut short is not, unless its own start_time_limit cut it
+// and that limit is unchanged (it would only be cut again). Deterministic starts
+// (search/start.h) make a resumed search end with the runs and best of one run without
+// interruption.
+//
+// Not thread-safe: search/coordinator.h guards it.
+#pragma once
+
+#include <cstdint>
+#include <cstdio>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "search/run_start.h"
+#include "search/search_plan.h"
+#include "search/task_queue.h"
+
+namespace disco {
+
+// Whether a recorded outcome is final, so that --resume skips its start.
+bool is_final(const StartOutcome& o, const SceneJob& job);
+
+class SearchRecord {
+ public:
+  // Opens DIR/runs.jsonl: for writing, or, if `resumed`, for appending after reading the
+  // lines of `seed` it holds. InputError if it cannot be opened.
+  SearchRecord(const SearchPlan& plan, const std::string& out_dir, std::uint64_t seed, bool resumed);
+  ~SearchRecord();
+  SearchRecord(const SearchRecord&) = delete;
+  SearchRecord& operator=(const SearchRecord&) = delete;
+
+  // The (scene, start) pairs with a final outcome in the earlier run (empty unless resumed).
+  const std::set<std::pair<int, int>>& done() const { return done_; }
+
+  // Records `o`, finished at search time `now` (s); its scene's first start was handed out
+  // at `scene_started`. Appends its line to runs.jsonl, recounts its scene and, when `o`
+  // is now the scene's best and `solution` is given, writes best/SCENE.json.
+  void record(const StartOutcome& o, const nlohmann::json* solution, double now, double scene_started);
+
+  // Writes best.json (the scenes' hand-out times and limits from `queue`).
+  void write_best(const TaskQueue& queue, double now, bool interrupted) const;
+
+  int finished() const { return finished_; }      // final outcomes, this run's and earlier ones
+  int resumed() const { return resumed_; }        // of those, read from the earlier run
+  int cut_short() const { return cut_short_; }    // this run's outcomes that are not final
+  int interrupted() const { return interrupted_; }  // of those, cut by an interrupt
+  bool all_solved() const;  // every scene has a certified best
+
+  // "scene T_f" for every scene with at most four, else for scene s (or, with s < 0, how
+  // many scenes are solved): the progress lines' best.
+  std::string best_summary(int s) const;
+
+ private:
+  struct Best {
+    int start = -1;
+    double T_f = 0.0;
+    StartOutcome outcome;
+    int run = 0, solved = 0;  // starts with an outcome; with a certified point
+    int cut_short = 0;        // of those, cut short (not final: --resume runs them again)
+    double first_feasible_s = -1.0, best_s = -1.0;
+    double last_s = -1.0;     // search time its last start was recorded
+  };
+  int scene_index(const std::string& name) const;
+  bool update(int s, const StartOutcome& o, double now, double scene_started);
+  void read_earlier(const std::string& path, std::uint64_t seed);
+
+  const SearchPlan& plan_;
+  std::string out_;
+  std::uint64_t seed_ = 0;
+  std::FILE* runs_ = nullptr;
+  std::vector<Best> best_;
+  std::map<std::pair<int, int>, StartOutcome> outcomes_;  // (scene, start): its latest outcome
+  std::set<std::pair<int, int>> done_;
+  int finished_ = 0, resumed_ = 0, cut_short_ = 0, interrupted_ = 0;
+};
+
+}  // namespace disco

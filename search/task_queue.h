@@ -1,0 +1,87 @@
+// disco — the tasks of a search and the order and budgets they are handed out with.
+//
+// A task is one start of one scene of the plan (search/search_plan.h). The queue holds
+// the tasks not yet run, larger scenes first (longest-processing-time order: fewer idle
+// ranks at the end; the order changes no result, only when each start runs), and hands
+// them out one at a time, on demand (starts differ in cost by 10x and more).
+//
+// Time limits stop the handing out at three levels: the whole search (`--time-limit`),
+// one scene (`time_limit` in a benchmark file, counted from the hand-out of the scene's
+// first start) and one start (`start_time_limit`). A task's budget is the smallest of
+// the start's own limit and what is left of its scene's and of the search's; its
+// BudgetSource says which limit set it (search/run_start.h).
+//
+// Not thread-safe: search/coordinator.h guards it.
+#pragma once
+
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "search/run_start.h"
+#include "search/search_plan.h"
+
+namespace disco {
+
+struct Task {
+  int scene = 0, start = 0;  // indices into the plan's scenes, and the start index
+  double budget = 0.0;       // s; 0 = none
+  BudgetSource source = BudgetSource::kNone;  // the limit that set the budget
+  nlohmann::json to_json() const;             // the message that hands it to a worker
+  static Task from_json(const nlohmann::json& j);
+};
+
+class TaskQueue {
+ public:
+  // Every task of `plan` but those in `done` ((scene, start) pairs: final outcomes of an
+  // earlier run); `time_limit` is the whole search's (s; 0 = none).
+  TaskQueue(const SearchPlan& plan, double time_limit, const std::set<std::pair<int, int>>& done);
+
+  // The next task for `rank` at search time `now` (s), or none: every task handed out,
+  // or the search's time limit passed. Scenes whose own limit has passed are skipped.
+  std::optional<Task> next(int rank, double now);
+  // Task (scene, start) has an outcome: it no longer runs.
+  void finished(int scene, int start) { running_.erase({scene, start}); }
+  // At the end: tasks left undone mean a time limit stopped the search.
+  void finish();
+
+  int total() const { return total_; }      // tasks of the plan
+  double time_limit() const { return time_limit_; }  // the search's (s; 0 = none)
+  int pending() const { return static_cast<int>(pending_.size() - next_); }
+  bool time_limited() const { return time_limited_; }
+  // Scene s: the search time its first start was handed out (< 0: not yet), and whether
+  // its own time limit stopped it.
+  double scene_started(int s) const { return scenes_[s].started_s; }
+  bool scene_time_limited(int s) const { return scenes_[s].time_limited; }
+
+  // The tasks handed out and not finished: (scene, start) -> rank, hand-out time.
+  struct Running {
+    int rank = 0;
+    double handed_s = 0.0;
+  };
+  const std::map<std::pair<int, int>, Running>& running() const { return running_; }
+
+  // At most this long (s) from `now` until the time limits stop the search: the search's
+  // own limit, and every scene's limit left (scenes taken one after another); +inf if
+  // no limit bounds it.
+  double time_left(double now) const;
+
+ private:
+  struct SceneState {
+    double started_s = -1.0;
+    bool time_limited = false;
+  };
+  const SearchPlan& plan_;
+  double time_limit_ = 0.0;
+  std::vector<Task> pending_;
+  std::size_t next_ = 0;
+  int total_ = 0;
+  bool time_limited_ = false;
+  std::vector<SceneState> scenes_;
+  std::map<std::pair<int, int>, Running> running_;
+};
+
+}  // namespace disco
