@@ -45,4 +45,3 @@ def loglog_fit(xs, ys):
         return None
     p = sum((a - mx) * (b - my) for a, b in pts) / sxx
     return p, my - p * mx
-
