@@ -1,0 +1,204 @@
+#!/usr/bin/python3
+"""Tests of the scripts' shared helpers (scripts/common) and of the results files the benchmark
+scripts write (CTest script.common, script.results; see tests/CMakeLists.txt).
+
+  script_tests.py SCRIPTS WORKDIR common
+  script_tests.py SCRIPTS WORKDIR results DISCO
+
+common   without disco: the results file's sections (a run replaces only its own label; a
+         full run drops its configuration's partial sections; a partial run never touches the
+         full run's section); which options make a run partial; where find_disco() looks, in
+         order (build tree, installed layout PREFIX/bin, PATH, --disco first of all); the
+         argument types.
+results  with a real disco: scripts/bench_stress and scripts/bench_examples on one small scene
+         each, into scratch results files: the header (command, UTC date, `disco --version`,
+         nproc, memory, wall time) and the table; a second run with other options adds its own
+         section and keeps the first. And common.solve on one_robot_axis: the solve log's
+         iterations and NLP solves, summed, equal solution.json's timing (two records disco
+         writes independently).
+"""
+import argparse
+import os
+import re
+import shutil
+import stat
+import subprocess
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from script_checks import check, finish  # noqa: E402
+
+SCRIPTS, WORK, MODE = sys.argv[1], sys.argv[2], sys.argv[3]
+sys.path.insert(0, SCRIPTS)
+from common import arguments, paths, results  # noqa: E402
+from common.solve import solve  # noqa: E402
+
+
+def sections(path):
+    with open(path) as f:
+        return [label for label, _ in results.split_sections(f.read())]
+
+
+def section_text(path, label):
+    with open(path) as f:
+        return dict(results.split_sections(f.read()))[label]
+
+
+def fake_run(argv, body):
+    """Results of a script 'bench_fake' with --scenes (partial) and --set (configuration),
+    run as `argv`, writing `body`."""
+    ap = argparse.ArgumentParser(description="A fake benchmark.\n\nMore text.")
+    ap.add_argument("--scenes", type=arguments.comma_list(), default="a,b")
+    ap.add_argument("--set", action="append", default=[])
+    results.add_options(ap)
+    saved = sys.argv
+    sys.argv = [os.path.join(SCRIPTS, "bench_fake")] + argv
+    try:
+        args = ap.parse_args(argv)
+        res = results.Results(ap, args, config=args.set, partial=["scenes"])
+        return res.label, res.write(body)
+    finally:
+        sys.argv = saved
+
+
+def test_common():
+    path = os.path.join(WORK, "fake.md")
+    label, written = fake_run(["--results", path], "full run 1")
+    check(label == "default" and written == path, f"a full run without --set is 'default' ({label})")
+    label, _ = fake_run(["--results", path, "--scenes", "a"], "partial run")
+    check(label == "default (partial: --scenes a)", f"a partial run gets its own label ({label})")
+    check(sections(path) == ["default", "default (partial: --scenes a)"],
+          f"the partial run keeps the full run's section ({sections(path)})")
+    check("full run 1" in section_text(path, "default"), "the full run's body is untouched")
+    label, _ = fake_run(["--results", path, "--set", "x.y=1"], "configured run")
+    check(label == "x.y=1", f"the --set list is the label ({label})")
+    label, _ = fake_run(["--results", path, "--set", "x.y=1", "--scenes", "b"], "configured partial")
+    check(sections(path) == ["default", "default (partial: --scenes a)", "x.y=1",
+                             "x.y=1 (partial: --scenes b)"], f"four sections ({sections(path)})")
+    fake_run(["--results", path], "full run 2")
+    check(sections(path) == ["default", "x.y=1", "x.y=1 (partial: --scenes b)"],
+          f"a full run replaces its section in place and drops its own partial ones only "
+          f"({sections(path)})")
+    text = section_text(path, "default")
+    check("full run 2" in text and "full run 1" not in text, "the full run's section is the new run's")
+    fake_run(["--results", path, "--label", "mine", "--scenes", "a"], "labelled")
+    check(sections(path)[-1] == "mine", "--label names the section, even for fewer scenes")
+    fake_run(["--results", path, "--no-results", "--scenes", "a"], "nothing")
+    check("nothing" not in open(path).read(), "--no-results writes nothing")
+    with open(path) as f:
+        top = f.read().splitlines()[:5]
+    check(top[0] == "# Results: scripts/bench_fake" and top[2] == "A fake benchmark.",
+          f"the file starts with its title and the script's one-line description ({top[:3]})")
+    head = section_text(path, "x.y=1")
+    check(re.search(r"^- Command: `scripts/bench_fake --results \S+ --set x.y=1`$", head, re.M) is not None,
+          "the header holds the command line as run")
+    check(re.search(r"^- Date: \d{4}-\d\d-\d\d \d\d:\d\d UTC$", head, re.M) is not None, "a UTC date")
+    check(re.search(r"^- Machine: \d+ CPUs \(nproc\).*GiB memory", head, re.M) is not None,
+          "nproc and memory")
+    check(re.search(r"^- Wall time: \d+ s$", head, re.M) is not None, "the wall time")
+
+    # find_disco: build tree, then PREFIX/bin/disco (ROOT = PREFIX/share/disco), then PATH.
+    prefix = os.path.join(WORK, "prefix")
+    root = os.path.join(prefix, "share", "disco")
+    tools = os.path.join(WORK, "path_bin")
+    for d in (root, os.path.join(prefix, "bin"), os.path.join(root, "build", "mpi"), tools):
+        os.makedirs(d, exist_ok=True)
+
+    def executable(p):
+        with open(p, "w") as f:
+            f.write("#!/bin/sh\n")
+        os.chmod(p, os.stat(p).st_mode | stat.S_IXUSR)
+        return p
+    os.environ["PATH"] = tools + os.pathsep + os.environ.get("PATH", "")
+    on_path = executable(os.path.join(tools, "disco"))
+    check(paths.find_disco(root=root) == on_path, "no build tree, not installed: disco on PATH")
+    installed = executable(os.path.join(prefix, "bin", "disco"))
+    check(os.path.samefile(paths.find_disco(root=root), installed),
+          "an installed layout: PREFIX/bin/disco before PATH")
+    built = executable(os.path.join(root, "build", "mpi", "disco"))
+    check(paths.find_disco(root=root) == built, "the build tree first")
+    check(paths.find_disco(on_path, root=root) == on_path, "--disco before everything")
+    try:
+        paths.find_disco(os.path.join(WORK, "no_such_disco"), root=root)
+        check(False, "--disco naming no file exits")
+    except SystemExit as e:
+        check("not an executable file" in str(e), f"--disco naming no file exits: {e}")
+
+    for parse, text, ok in ((arguments.comma_list(int), "25,50", [25, 50]),
+                            (arguments.int_at_least(2), "2", 2),
+                            (arguments.int_in_range(100, 200, "a size"), "150", 150)):
+        check(parse(text) == ok, f"{text} parses to {ok}")
+    for parse, text, msg in ((arguments.comma_list(int), "a,b", "not a comma-separated list"),
+                             (arguments.int_at_least(2), "1", "not an integer >= 2"),
+                             (arguments.int_in_range(100, 200, "a size"), "99", "not a size, 100..200")):
+        try:
+            parse(text)
+            check(False, f"'{text}' is refused")
+        except argparse.ArgumentTypeError as e:
+            check(msg in str(e), f"'{text}' is refused: {e}")
+
+
+def run_script(name, *args):
+    r = subprocess.run([os.path.join(SCRIPTS, name), *args], capture_output=True, text=True)
+    return r
+
+
+def test_results(disco):
+    version = subprocess.run([disco, "--version"], capture_output=True, text=True).stdout.strip()
+    check(bool(version), f"disco --version prints '{version}'")
+    stress = os.path.join(WORK, "bench_stress.md")
+    r = run_script("bench_stress", "--disco", disco, "--scenes", "mu_0", "--out", os.path.join(WORK, "stress"),
+                   "--results", stress)
+    check(r.returncode == 0, f"bench_stress --scenes mu_0 exits 0 ({r.returncode})" + (r.stderr if r.returncode else ""))
+    check(sections(stress) == ["default (partial: --scenes mu_0)"], f"one partial section ({sections(stress)})")
+    text = section_text(stress, "default (partial: --scenes mu_0)")
+    check(f"- disco: `{version}` ({disco})" in text, "the header names disco's version and path")
+    check(f"- Command: `scripts/bench_stress --disco {disco} --scenes mu_0 --out " in text,
+          "the header holds the command line")
+    row = re.search(r"^\| mu_0 \| solved \| ([\d.]+) \| ([\d.]+) \|.*\| yes \|$", text, re.M)
+    check(row is not None, "the table's row of mu_0: solved, OK")
+    if row:
+        check(abs(float(row.group(1)) - float(row.group(2))) <= 1e-6 * float(row.group(2)),
+              "its T_f equals the expectation computed from the scene file")
+    check("1 of 1 OK" in text, "the conclusion counts the OK rows")
+    r = run_script("bench_stress", "--disco", disco, "--scenes", "K_3", "--out", os.path.join(WORK, "stress"),
+                   "--results", stress)
+    check(sections(stress) == ["default (partial: --scenes mu_0)", "default (partial: --scenes K_3)"],
+          f"another partial run adds its own section ({sections(stress)})")
+
+    examples = os.path.join(WORK, "bench_examples.md")
+    r = run_script("bench_examples", "--disco", disco, "--scenes", "one_robot_axis", "--out",
+                   os.path.join(WORK, "examples"), "--results", examples, "--label", "smoke")
+    check(r.returncode == 0, f"bench_examples --scenes one_robot_axis exits 0 ({r.returncode})"
+          + (r.stderr if r.returncode else ""))
+    check(sections(examples) == ["smoke"], f"--label names the section ({sections(examples)})")
+    sol = os.path.join(WORK, "examples", "runs", "one_robot_axis", "solution.json")
+    import json
+    with open(sol) as f:
+        doc = json.load(f)
+    m = doc["model"]
+    want = (f"| one_robot_axis | {m['variables']} / {m['constraints']} / {m['complementarity_pairs']} "
+            f"| solved | {doc['T_f']:.6f} | {doc['lower_bound']:.6f} "
+            f"| {doc['timing']['nlp_solves']} / {doc['timing']['iterations']} |")
+    check(want in section_text(examples, "smoke"), f"the row is the solution file's: {want}")
+
+    run = solve(disco, os.path.join(os.path.dirname(SCRIPTS), "configs", "scenarios", "one_robot_axis.yaml"),
+                os.path.join(WORK, "solve"), ["scene.steps=30"])
+    timing = run.solution["timing"]
+    check(run.exit == 0 and run.lines, f"common.solve: exit 0 and {len(run.lines)} solve-log lines")
+    check(sum(s.iterations for s in run.lines) == timing["iterations"],
+          f"solve-log iterations sum to timing.iterations ({timing['iterations']})")
+    check(sum(s.nlp_solves for s in run.lines) == timing["nlp_solves"],
+          f"solve-log NLP solves sum to timing.nlp_solves ({timing['nlp_solves']})")
+    check(run.lines[0].phase == "feasibility", f"the first solve is the feasibility phase ({run.lines[0].phase})")
+
+
+shutil.rmtree(WORK, ignore_errors=True)
+os.makedirs(WORK)
+if MODE == "common":
+    test_common()
+elif MODE == "results":
+    test_results(sys.argv[4])
+else:
+    sys.exit(f"unknown mode {MODE}")
+finish(f"script.{MODE}")
