@@ -18,7 +18,7 @@
 // Finds a feasible point at a large fixed T_f, then runs the paper's inexact
 // objective reduction from it (search/objective_reduction.h), logging one line
 // per elastic-mode solve to stderr, and writes DIR/solution.json (schema:
-// core/model/solution.h and README.md). The file is written whatever the
+// core/model/solution.h and core/README.md). The file is written whatever the
 // outcome, with the status telling what happened.
 //
 // Exit status (also in --help, kExitCodes): 0 a certified solution was written (search:

@@ -10,7 +10,7 @@ MODE:
               from the report's code: the page is offline (no script, no absolute URL, every
               linked file inside the report folder); a summary row per scene with its T_f,
               lower bound, gap, times, starts and certificate; per solved scene the snapshots,
-              an animated GIF whose disks move, the plots over time (pair distances for
+              an animated GIF whose disks move, the plots over time (pair gaps for
               scenes with pairs, contact forces for scenes with contact pairs) and the two search plots, none of them blank; a row per start
               with its T_f and the best start marked; the scene without a solution says so,
               with its status; the raw data copied byte for byte. Then bad input: a missing
@@ -22,7 +22,7 @@ MODE:
               drawn, and a resumed search's scene times are marked.
   plots       on the search of `build`: every plot's drawn data read back from the figure
               and compared with the solution file and runs.jsonl (controls, speeds, floor
-              friction, contact forces, distances; each start's new bests against time, the
+              friction, contact forces, gaps; each start's new bests against time, the
               spread of final T_f).
   screenshot  scripts/screenshot_report on the page built by `build`: a PNG of the window
               size, not blank, in which the plots' colours appear (the images loaded offline).
@@ -201,11 +201,11 @@ def build():
                 sol = json.load(f)
             kinds = ["snapshots.png", "controls.png", "speeds.png", "floor_friction.png",
                      "progress.png", "spread.png"]
-            # Pair distances for scenes with pairs; contact forces for contact pairs (in
+            # Pair gaps for scenes with pairs; contact forces for contact pairs (in
             # forced_contact the collision pushes, so the plot has coloured lines).
             contact = any(p["mode"] == "contact" for p in sol["pairs"])
-            kinds += ["distances.png"] * bool(sol["pairs"]) + ["contact_forces.png"] * contact
-            for k, want in (("distances.png", bool(sol["pairs"])), ("contact_forces.png", contact)):
+            kinds += ["gaps.png"] * bool(sol["pairs"]) + ["contact_forces.png"] * contact
+            for k, want in (("gaps.png", bool(sol["pairs"])), ("contact_forces.png", contact)):
                 check(os.path.exists(os.path.join(out, "img", f"{name}_{k}")) == want,
                       f"{name}: {k} {'drawn' if want else 'left out'}")
             for k in kinds:
@@ -413,11 +413,11 @@ def plots():
           all(same(g.values, p["tangential_force"]) for g, p in zip(t_got, pushing)),
           f"contact forces: normal and tangential of the {len(pushing)} pushing pair(s)")
 
-    fig = time_series.plot_distances(sol, None, [])
+    fig = time_series.plot_gaps(sol, None, [])
     lines = [l for l in fig.axes[0].lines if len(l.get_xdata()) == n + 1]
     check(len(lines) == len(raw["pairs"]) and all(
-        same(l.get_ydata(), p["distance"]) for l, p in zip(lines, raw["pairs"])),
-        "distances: rho of the pair at the states")
+        same(l.get_ydata(), p["gap"]) for l, p in zip(lines, raw["pairs"])),
+        "gaps: rho of the pair at the states")
 
     # The search plots, for the swap (several starts, several new bests).
     name = "two_robots_swap_avoid"

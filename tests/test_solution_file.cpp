@@ -1,4 +1,4 @@
-// The solution file (README.md, "The solution file") checked from the JSON alone.
+// The solution file (core/README.md, "The solution file") checked from the JSON alone.
 //
 // Small scenes are solved with disco, the document is written with
 // solution_json / write_json_file and read back, and then everything below is
@@ -13,7 +13,7 @@
 //   * a scene without a solution: status, status_detail and null trajectories.
 //
 // Tolerances. disco certifies its constraints to 1e-6 in the model's units
-// (README, "Scaling": length = mean radius, mass = mean mass, force = mean
+// (core/README.md, units: length = mean radius, mass = mean mass, force = mean
 // F_max, time = sqrt(length mass / force)). The scales below are computed
 // from the robots in the JSON with that documented rule, and each residual is
 // compared with 1e-6 of its own scale (impulse = force * time, angular impulse
@@ -350,7 +350,7 @@ bool check_solved_schema(const json& doc) {
   for (std::size_t p = 0; p < doc["pairs"].size(); ++p) {
     const json& jp = doc["pairs"][p];
     const std::string w = "pairs[" + std::to_string(p) + "]";
-    ok &= has_numbers(jp, "distance", N + 1, w);
+    ok &= has_numbers(jp, "gap", N + 1, w);
     for (const char* k : kPairSteps) ok &= has_numbers(jp, k, N, w);
   }
   return ok;
@@ -418,7 +418,7 @@ PairData pair_data(const json& jp) {
   d.contact = jp["mode"] == "contact";
   d.safe = jp["safe_distance"];
   d.mu = jp["mu"];
-  d.dist = numbers(jp["distance"]);
+  d.dist = numbers(jp["gap"]);
   d.fn = numbers(jp["normal_force"]);
   d.ft = numbers(jp["tangential_force"]);
   return d;
@@ -793,7 +793,7 @@ TEST(SolutionFile, SceneWithoutSolutionHasStatusAndNullTrajectories) {
         << "; not null:" << not_null;
   }
   ASSERT_EQ(doc["pairs"].size(), 1u);
-  for (const char* k : {"distance", "normal_force", "tangential_force"})
+  for (const char* k : {"gap", "normal_force", "tangential_force"})
     has_null(doc["pairs"][0], k, "pairs[0]");
   // Where the last attempt broke the model: robot a's rotation (its phi target is out of
   // reach), not robot b, which can reach its own target.

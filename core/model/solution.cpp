@@ -102,11 +102,11 @@ json solution_json(const RobotProblem& problem, const Vector& z, const SolutionI
         contact[pr.j][t][2] += f.torque_j;
         contact[pr.i][t][2] += f.torque_i;
       }
-      jp["distance"] = gap;
+      jp["gap"] = gap;
       jp["normal_force"] = fn;
       jp["tangential_force"] = ft;
     } else {
-      jp["distance"] = jp["normal_force"] = jp["tangential_force"] = nullptr;
+      jp["gap"] = jp["normal_force"] = jp["tangential_force"] = nullptr;
     }
     pairs.push_back(jp);
   }

@@ -1,6 +1,6 @@
 // disco — the solution file (solution.json), in SI units.
 //
-// Schema (documented for users in README.md, "The solution file"):
+// Schema (documented for users in core/README.md, "The solution file"):
 //   scenario, status, status_detail (when not solved), violations (when not solved: [{owner,
 //   family, amount}], RobotProblem::violations at the last feasibility attempt), T_f, N_t, h,
 //   time (N_t + 1 values: t_k = k h, 0 to T_f; null without a solution), g, lower_bound (or null),
@@ -13,7 +13,7 @@
 //     Fx, Fy, friction_x, friction_y, contact_x, contact_y, contact_torque (N_t values:
 //     over the step from t to t+1; contact_* sum every contact force on the robot);
 //   pairs[]: i, j, robot_i, robot_j (the robots' names), mode, safe_distance, mu,
-//     distance (N_t + 1: rho),
+//     gap (N_t + 1: rho, from the centres),
 //     normal_force (N_t: push of i on j along the unit vector from i's centre to j's),
 //     tangential_force (N_t: i's force on j along that unit vector turned +90 degrees);
 //     the force on i is the opposite;

@@ -1,5 +1,5 @@
 """Reading a disco solution file (`disco solve`'s solution.json, a search's best/SCENE.json;
-schema in README.md, "The solution file") into plain lists, with every key checked, and the
+schema in core/README.md, "The solution file") into plain lists, with every key checked, and the
 geometry the drawings share (poses between states, contact points, the scene's extent).
 
 load(path) raises BadInput with a message naming the key, e.g. "missing key 'robots[0].phi'".
@@ -47,7 +47,7 @@ ROBOT_STATES = ("vx", "vy", "omega")                       # N_t + 1 entries
 ROBOT_STEPS = ("Fx", "Fy", "friction_x", "friction_y", "contact_x", "contact_y",
                "contact_torque")                           # N_t entries
 ROBOT_NUMBERS = ("mass", "mu")
-PAIR_STATES = ("distance",)
+PAIR_STATES = ("gap",)
 PAIR_STEPS = ("normal_force", "tangential_force")
 
 
@@ -57,7 +57,7 @@ def load(path, full=False):
     [[x, y] lower, [x, y] upper] with None for free, x, y, phi) and pairs (i, j,
     normal_force). full=True adds g, certificate, model, timing, status_detail, each robot's
     mass, mu, force_bound [bx, by] (|F_x| <= bx, |F_y| <= by), vx, vy, omega and per-step forces, and each pair's mode, safe_distance, mu,
-    distance and tangential_force."""
+    gap and tangential_force."""
     try:
         with open(path) as f:
             doc = json.load(f)

@@ -1,8 +1,8 @@
 """Plots over time of one solution (scripts/report): controls, speeds, floor friction, contact
-forces and pair distances. Input: a solution read by viz.solution_file.load(path, full=True)
+forces and pair gaps. Input: a solution read by viz.solution_file.load(path, full=True)
 with a trajectory.
 
-States (x, v, omega, distance) live at t_k = k h, k = 0..N_t, and are drawn as lines; a step's
+States (x, v, omega, gap) live at t_k = k h, k = 0..N_t, and are drawn as lines; a step's
 quantities (the control F, floor friction, contact impulses / h) hold over [t_k, t_k+1) and are
 drawn as stairs. Robots keep the colours of the snapshots (tab10); pairs get their own (Dark2).
 Dotted vertical lines mark the snapshot times, numbered as in the snapshot figure.
@@ -147,25 +147,25 @@ def plot_contact_forces(sol, out, times, thr):
     return _finish(fig, axes, sol, times, out)
 
 
-def plot_distances(sol, out, times):
+def plot_gaps(sol, out, times):
     """The gap rho [m] of the pairs that come close (at most twice the mean diameter);
     dashed: each mode's safe distance (avoid pairs) and 0 (contact)."""
     t = _grid(sol)
     near = 4.0 * sum(r["radius"] for r in sol["robots"]) / len(sol["robots"])
-    close = sorted((p for p in sol["pairs"] if min(p["distance"]) <= near),
-                   key=lambda p: min(p["distance"]))
+    close = sorted((p for p in sol["pairs"] if min(p["gap"]) <= near),
+                   key=lambda p: min(p["gap"]))
     shown = close[:MAX_PAIR_LINES]
     which = (f" (the {len(shown)} closest of {len(sol['pairs'])} pairs)"
              if len(shown) < len(sol["pairs"]) else "")
-    fig, axes = _figure(1, f"{sol['scenario']}: pair distances ρ{which} "
+    fig, axes = _figure(1, f"{sol['scenario']}: pair gaps ρ{which} "
                            "(dashed: safe distance)")
     ax = axes[0]
     for p, c in zip(shown, _pair_colors(len(shown))):
-        ax.plot(t, p["distance"], color=c, lw=1.3, label=f"{_pair_label(sol, p)} ({p['mode']})")
+        ax.plot(t, p["gap"], color=c, lw=1.3, label=f"{_pair_label(sol, p)} ({p['mode']})")
     for d in sorted({p["safe_distance"] if p["mode"] == "avoid" else 0.0 for p in shown}):
         ax.axhline(d, color="0.3", lw=0.8, ls="--")
     if shown:
-        top = max(max(p["distance"]) for p in shown)
+        top = max(max(p["gap"]) for p in shown)
         ax.set_ylim(-0.02 * near, min(top, 2.0 * near) * 1.05)
     else:
         _note(ax, "no pair comes within two diameters")
