@@ -223,6 +223,18 @@ TEST(Settings, SplitOverrides) {
                 "--set: key '=3': ", "empty key");
 }
 
+// The test binary (BUILD/tests) finds its default settings at BUILD/share/disco/configs/
+// disco.yaml, which is the source's configs/disco.yaml (a link made when CMake configures).
+TEST(Settings, TheDefaultFileIsFoundBesideTheExecutable) {
+  const std::string path = default_settings_path();
+  const std::string tail = "/share/disco/configs/disco.yaml";
+  ASSERT_GT(path.size(), tail.size());
+  EXPECT_EQ(path.substr(path.size() - tail.size()), tail) << path;
+  EXPECT_TRUE(std::filesystem::equivalent(path, std::string(DISCO_SOURCE_DIR) + "/configs/disco.yaml"))
+      << path;
+  EXPECT_EQ(Settings::load(path).source(), path);
+}
+
 // Every range check of the section readers, each naming the key ("--set" when overridden).
 TEST(Settings, TheSectionReadersRefuseValuesOutOfRange) {
   struct Case {

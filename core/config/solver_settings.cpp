@@ -105,6 +105,4 @@ ReductionSettings reduction_settings(const Settings& s) {
   return r;
 }
 
-std::string default_settings_path() { return std::string(DISCO_SOURCE_DIR) + "/configs/disco.yaml"; }
-
 }  // namespace disco

@@ -48,9 +48,6 @@ ElasticSettings elastic_settings(const Settings& settings);          // the `ela
 ModelOptions model_options(const Settings& settings);                // the `model:` section
 ReductionSettings reduction_settings(const Settings& settings);      // `feasibility:` + `reduction:`
 
-// Path of the default settings file shipped with disco (configs/disco.yaml).
-std::string default_settings_path();
-
 // The value of the text key `key` among `choices` (name, value); any other text is an
 // InputError naming the key and listing the names.
 template <class E>
