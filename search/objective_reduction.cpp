@@ -165,44 +165,6 @@ struct Reduction {
 }  // namespace
 
 
-ReductionSettings reduction_settings(const Settings& s) {
-  ReductionSettings r;
-  auto positive = [&](const std::string& key) {
-    const double v = s.number(key);
-    if (!(v > 0)) throw InputError(s.where(key) + ": key '" + key + "': must be positive");
-    return v;
-  };
-  r.horizon_factor = positive("feasibility.horizon_factor");
-  r.horizon_min = positive("feasibility.horizon_min");
-  r.rate = positive("reduction.rate");
-  if (r.rate >= 1) throw InputError(s.where("reduction.rate") + ": key 'reduction.rate': must be < 1");
-  r.grow = positive("reduction.grow");
-  r.shrink = positive("reduction.shrink");
-  if (r.shrink >= 1)
-    throw InputError(s.where("reduction.shrink") + ": key 'reduction.shrink': must be < 1");
-  r.min_rate = positive("reduction.min_rate");
-  r.max_solves = s.integer("reduction.max_solves");
-  if (r.max_solves < 0)
-    throw InputError(s.where("reduction.max_solves") + ": key 'reduction.max_solves': must be >= 0");
-  r.step_iterations = s.integer("reduction.step_iterations");
-  if (r.step_iterations < 1)
-    throw InputError(s.where("reduction.step_iterations") +
-                     ": key 'reduction.step_iterations': must be >= 1");
-  r.minimize_iterations = s.integer("reduction.minimize_iterations");
-  if (r.minimize_iterations < 0)
-    throw InputError(s.where("reduction.minimize_iterations") +
-                     ": key 'reduction.minimize_iterations': must be >= 0");
-  r.minimizer = choice<Minimizer>(s, "reduction.minimize",
-                                  {{"elastic", Minimizer::kElastic}, {"branch", Minimizer::kBranch}});
-  r.flip_rounds = s.integer("reduction.flip_rounds");
-  if (r.flip_rounds < 0)
-    throw InputError(s.where("reduction.flip_rounds") + ": key 'reduction.flip_rounds': must be >= 0");
-  r.time_limit = s.number("reduction.time_limit");
-  if (r.time_limit < 0)
-    throw InputError(s.where("reduction.time_limit") + ": key 'reduction.time_limit': must be >= 0");
-  return r;
-}
-
 double feasibility_horizon(const RobotProblem& problem, const ReductionSettings& cfg) {
   const auto scale = problem.reference_time();
   return scale ? std::max(cfg.horizon_min, cfg.horizon_factor * *scale) : cfg.horizon_min;

@@ -80,33 +80,11 @@
 #include <vector>
 
 #include "core/config/settings.h"
+#include "core/config/solver_settings.h"  // ReductionSettings, Minimizer, reduction_settings
 #include "core/elastic/elastic_solver.h"
 #include "core/model/robot_problem.h"
 
 namespace disco {
-
-// How the reduction minimises (step 3 and its early call; reduction.minimize).
-enum class Minimizer {
-  kElastic,  // one elastic-mode minimisation, to convergence
-  kBranch,   // a descent by branches: elastic segments and branch descents (below)
-};
-
-
-// The schedule; its values come from configs/disco.yaml (reduction_settings), so no
-// defaults are kept here.
-struct ReductionSettings {
-  Minimizer minimizer = Minimizer::kElastic;
-  double horizon_factor = 0.0;
-  double horizon_min = 0.0;  // s
-  double rate = 0.0, grow = 0.0, shrink = 0.0, min_rate = 0.0;
-  int max_solves = 0;
-  int step_iterations = 0;  // cap on a minimising step before switching to fixed
-                            // steps; kBranch: also Ipopt iterations per elastic segment
-  int minimize_iterations = 0;  // kElastic: cap on the early minimisation (step 3); 0 = none
-  int flip_rounds = 0;      // kBranch: at most this many rounds of flips per branch descent
-  double time_limit = 0.0;  // s; 0 = none
-};
-ReductionSettings reduction_settings(const Settings& settings);  // `feasibility:` + `reduction:`
 
 // What an elastic-mode solve of the reduction is (the solve log's "phase" column):
 // step 1, step 1b, a minimising step of step 2, a fixed step (or the probe below a local

@@ -57,7 +57,7 @@ MpccResult at(const Mpcc& m, const ElasticSettings& s, double x, double y) {
 class BranchDescent : public ::testing::TestWithParam<std::tuple<ElasticFormulation, bool>> {
  protected:
   ElasticSettings settings() const {
-    ElasticSettings s;
+    ElasticSettings s = test_support::disco_yaml_elastic_settings();
     s.formulation = std::get<0>(GetParam());
     return s;
   }

@@ -423,8 +423,9 @@ void expect_solved_to_reference(const Problem& pb, const MpccResult& r) {
   }
 }
 
+// configs/disco.yaml's elastic parameters, with this formulation and polish.
 ElasticSettings settings_for(ElasticFormulation form, bool polish) {
-  ElasticSettings s;
+  ElasticSettings s = test_support::disco_yaml_elastic_settings();
   s.formulation = form;
   s.polish = polish;
   return s;

@@ -1,4 +1,5 @@
-// Tests for the solver settings (core/config/settings.h).
+// Tests for the solver settings (core/config/settings.h) and their one typed reader
+// (core/config/solver_settings.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "core/config/settings.h"
+#include "core/config/solver_settings.h"
 #include "core/util/errors.h"
 #include "tests/test_support_messages.h"
 
@@ -219,6 +221,63 @@ TEST(Settings, SplitOverrides) {
                 "--set: key 'scene.steps': ", "KEY=VALUE");
   expect_prefix(error_of([&] { split_overrides({"=3"}, scene, settings); }),
                 "--set: key '=3': ", "empty key");
+}
+
+// The test binary (BUILD/tests) finds its default settings at BUILD/share/disco/configs/
+// disco.yaml, which is the source's configs/disco.yaml (a link made when CMake configures).
+TEST(Settings, TheDefaultFileIsFoundBesideTheExecutable) {
+  const std::string path = default_settings_path();
+  const std::string tail = "/share/disco/configs/disco.yaml";
+  ASSERT_GT(path.size(), tail.size());
+  EXPECT_EQ(path.substr(path.size() - tail.size()), tail) << path;
+  EXPECT_TRUE(std::filesystem::equivalent(path, std::string(DISCO_SOURCE_DIR) + "/configs/disco.yaml"))
+      << path;
+  EXPECT_EQ(Settings::load(path).source(), path);
+}
+
+// Every range check of the section readers, each naming the key ("--set" when overridden).
+TEST(Settings, TheSectionReadersRefuseValuesOutOfRange) {
+  struct Case {
+    const char* assignment;
+    const char* key;
+    const char* what;
+    bool reduction;  // reduction_settings (else elastic_settings)
+  };
+  const Case cases[] = {
+      {"elastic.zeta=0", "elastic.zeta", "must be positive", false},
+      {"elastic.zeta_factor=1", "elastic.zeta_factor", "must exceed 1", false},
+      {"elastic.sigma_factor=1", "elastic.sigma_factor", "must be below 1", false},
+      {"elastic.violation_tolerance=-1e-6", "elastic.violation_tolerance", "must be positive", false},
+      {"elastic.formulation=tight", "elastic.formulation", "must be 'lumped', 'per_pair' or 'relaxed', got 'tight'", false},
+      {"feasibility.horizon_min=0", "feasibility.horizon_min", "must be positive", true},
+      {"reduction.rate=1", "reduction.rate", "must be below 1", true},
+      {"reduction.shrink=1.5", "reduction.shrink", "must be below 1", true},
+      {"reduction.max_solves=-1", "reduction.max_solves", "must be >= 0", true},
+      {"reduction.step_iterations=0", "reduction.step_iterations", "must be >= 1", true},
+      {"reduction.flip_rounds=-2", "reduction.flip_rounds", "must be >= 0", true},
+      {"reduction.time_limit=-1", "reduction.time_limit", "must be >= 0", true},
+  };
+  for (const Case& c : cases) {
+    Settings s = Settings::load(default_settings_path());
+    s.apply_override(c.assignment);
+    const std::string msg = error_of([&] {
+      if (c.reduction) {
+        reduction_settings(s);
+      } else {
+        elastic_settings(s);
+      }
+    });
+    EXPECT_EQ(msg, std::string("--set: key '") + c.key + "': " + c.what) << c.assignment;
+  }
+  // In the file, the message names its line.
+  const std::string file = temp_path("range.yaml");
+  {
+    std::ofstream out(file);
+    out << "feasibility:\n  horizon_factor: 1.5\n  horizon_min: -1\n";
+  }
+  expect_prefix(error_of([&] { reduction_settings(Settings::load(file)); }),
+                file + ":3: key 'feasibility.horizon_min': ", "must be positive");
+  std::filesystem::remove(file);
 }
 
 }  // namespace

@@ -10,6 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "core/config/settings.h"
+#include "core/config/solver_settings.h"
+#include "core/elastic/elastic_solver.h"
 #include "core/ipopt/ipopt_solver.h"
 #include "core/nlp/polynomial_program.h"
 
@@ -39,6 +42,11 @@ inline std::vector<IpoptOption> disco_yaml_ipopt_options() {
       {"warm_start_slack_bound_frac", "1.0e-9", where},
       {"warm_start_mult_bound_push", "1.0e-9", where},
   };
+}
+
+// The `elastic:` section of configs/disco.yaml (the settings file the test binary finds).
+inline ElasticSettings disco_yaml_elastic_settings() {
+  return elastic_settings(Settings::load(default_settings_path()));
 }
 
 // A random polynomial program together with an independent record of what

@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <filesystem>
 #include <set>
+#include <system_error>
 #include <utility>
 
 #include "core/config/yaml_nodes.h"
@@ -22,6 +24,9 @@ using yaml::kOverrideSource;
 using yaml::line_of;
 using yaml::override_fail;
 using yaml::split_dots;
+
+// The default settings file's path below the prefix (core/CMakeLists.txt).
+constexpr const char* kDefaultSettingsFile = DISCO_DEFAULT_SETTINGS;
 
 // The child of `n` named `part` (a key of a mapping or an index of a sequence), or an
 // undefined node.
@@ -131,6 +136,15 @@ Settings& Settings::operator=(const Settings& other) {
 }
 
 Settings Settings::load(const std::string& path) {
+  std::error_code ec;
+  if (path == default_settings_path() && !std::filesystem::exists(path, ec)) {
+    throw InputError(located_message(
+        path, 0, "",
+        std::string("no settings file here: without --settings, disco reads ") +
+            kDefaultSettingsFile +
+            " under its prefix (the directory above the one holding the executable; a build "
+            "tree gets it when CMake configures it); pass --settings FILE"));
+  }
   return parse(yaml::read_file(path, "settings file"), path);
 }
 
@@ -275,6 +289,17 @@ std::string Settings::where(const std::string& key) const {
   const int line = line_of(n);
   if (line == 0) return impl_->source;
   return impl_->source + ":" + std::to_string(line);
+}
+
+std::string default_settings_path() {
+  static const std::string path = [] {
+    std::error_code ec;
+    const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+    // Unreadable (no /proc): a path that cannot exist, naming how it was looked for.
+    if (ec) return std::string("/proc/self/exe/../../") + kDefaultSettingsFile;
+    return (exe.parent_path().parent_path() / kDefaultSettingsFile).string();
+  }();
+  return path;
 }
 
 void split_overrides(const std::vector<std::string>& sets, std::vector<std::string>& scene,

@@ -1,5 +1,5 @@
-// disco — solver settings, read from a YAML file (configs/disco.yaml) and command-line
-// overrides.
+// disco — solver settings, read from a YAML file (configs/disco.yaml; installed as
+// share/disco/configs/disco.yaml, see default_settings_path) and command-line overrides.
 //
 // The settings file is one YAML mapping of sections ("ipopt:", "elastic:", ...). Code asks
 // for values by dotted key ("elastic.zeta_max") with the accessor of the expected type; a
@@ -33,7 +33,8 @@ class Settings {
   Settings& operator=(Settings&&) noexcept;
 
   // Reads the settings file at `path`. InputError if it cannot be opened, is not valid YAML,
-  // is not a mapping or repeats a key.
+  // is not a mapping or repeats a key (for default_settings_path(), below, if it is not
+  // there: the message says where disco looks and to pass --settings FILE).
   static Settings load(const std::string& path);
   // Same, from text in memory; `source` names it in messages.
   static Settings parse(const std::string& text, const std::string& source);
@@ -81,6 +82,17 @@ class Settings {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+// The settings file read when none is given (--settings): PREFIX/share/disco/configs/disco.yaml,
+// PREFIX being the directory above the one holding the running executable (found through
+// /proc/self/exe). So PREFIX/bin/disco reads PREFIX/share/disco/configs/disco.yaml (the
+// install's copy of configs/disco.yaml), and in a build tree BUILD/mpi/disco and the test
+// binaries in BUILD/tests read BUILD/share/disco/configs/disco.yaml, a link to the source's
+// configs/disco.yaml that CMake makes when it configures (so edits need no rebuild). No
+// source path is compiled in (the relative path comes from CMake: DISCO_SETTINGS_FILE).
+// Settings::load of this path, when nothing is there, is an InputError that names the path
+// and says to pass --settings FILE.
+std::string default_settings_path();
 
 // Splits command-line "--set" assignments: entries starting with "scene." go to `scene`
 // with that prefix removed (for load_scene), all others to `settings` (for

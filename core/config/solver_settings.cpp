@@ -1,8 +1,53 @@
+// disco — typed solver settings. See solver_settings.h.
 #include "core/config/solver_settings.h"
 
 #include "core/util/errors.h"
 
 namespace disco {
+
+namespace {
+
+// The range checks of every section: each reads `key` and refuses a value out of its
+// range with "WHERE: key 'KEY': must ...".
+[[noreturn]] void refuse(const Settings& s, const std::string& key, const std::string& what) {
+  throw InputError(s.where(key) + ": key '" + key + "': " + what);
+}
+
+double positive(const Settings& s, const std::string& key) {
+  const double v = s.number(key);
+  if (!(v > 0)) refuse(s, key, "must be positive");
+  return v;
+}
+
+// A factor that grows something: > 1.
+double above_one(const Settings& s, const std::string& key) {
+  const double v = positive(s, key);
+  if (v <= 1) refuse(s, key, "must exceed 1");
+  return v;
+}
+
+// A fraction or a factor that shrinks something: 0 < v < 1.
+double below_one(const Settings& s, const std::string& key) {
+  const double v = positive(s, key);
+  if (v >= 1) refuse(s, key, "must be below 1");
+  return v;
+}
+
+// A count with a lower bound.
+int integer_at_least(const Settings& s, const std::string& key, int min) {
+  const int v = s.integer(key);
+  if (v < min) refuse(s, key, "must be >= " + std::to_string(min));
+  return v;
+}
+
+// A duration or a limit where 0 means none.
+double non_negative(const Settings& s, const std::string& key) {
+  const double v = s.number(key);
+  if (v < 0) refuse(s, key, "must be >= 0");
+  return v;
+}
+
+}  // namespace
 
 std::vector<IpoptOption> ipopt_options(const Settings& settings) {
   std::vector<IpoptOption> out;
@@ -11,16 +56,6 @@ std::vector<IpoptOption> ipopt_options(const Settings& settings) {
                                                : std::string("--set")});
   return out;
 }
-
-namespace {
-
-double positive(const Settings& s, const std::string& key) {
-  const double v = s.number(key);
-  if (!(v > 0)) throw InputError(s.where(key) + ": key '" + key + "': must be positive");
-  return v;
-}
-
-}  // namespace
 
 ModelOptions model_options(const Settings& s) {
   ModelOptions m;
@@ -35,27 +70,39 @@ ElasticSettings elastic_settings(const Settings& s) {
                                                {"per_pair", ElasticFormulation::kPerPair},
                                                {"relaxed", ElasticFormulation::kRelaxed}});
   e.zeta = positive(s, "elastic.zeta");
-  e.zeta_factor = positive(s, "elastic.zeta_factor");
-  if (e.zeta_factor <= 1)
-    throw InputError(s.where("elastic.zeta_factor") + ": key 'elastic.zeta_factor': must exceed 1");
+  e.zeta_factor = above_one(s, "elastic.zeta_factor");
   e.zeta_max = positive(s, "elastic.zeta_max");
   e.stall_change = s.number("elastic.stall_change");
   e.complementarity_tol = positive(s, "elastic.complementarity_tolerance");
   e.violation_tol = positive(s, "elastic.violation_tolerance");
   e.polish = s.boolean("elastic.polish");
   e.sigma = positive(s, "elastic.sigma");
-  e.sigma_factor = positive(s, "elastic.sigma_factor");
-  if (e.sigma_factor >= 1)
-    throw InputError(s.where("elastic.sigma_factor") + ": key 'elastic.sigma_factor': must be below 1");
+  e.sigma_factor = below_one(s, "elastic.sigma_factor");
   e.sigma_min = positive(s, "elastic.sigma_min");
   e.barrier_ratio = positive(s, "elastic.barrier_ratio");
   if (e.formulation == ElasticFormulation::kRelaxed && !e.polish)
-    throw InputError(s.where("elastic.polish") +
-                     ": key 'elastic.polish': formulation relaxed needs polish: its homotopy "
-                     "ends where the relaxation stops holding, and polish fixes the branch");
+    refuse(s, "elastic.polish",
+           "formulation relaxed needs polish: its homotopy ends where the relaxation stops "
+           "holding, and polish fixes the branch");
   return e;
 }
 
-std::string default_settings_path() { return std::string(DISCO_SOURCE_DIR) + "/configs/disco.yaml"; }
+ReductionSettings reduction_settings(const Settings& s) {
+  ReductionSettings r;
+  r.horizon_factor = positive(s, "feasibility.horizon_factor");
+  r.horizon_min = positive(s, "feasibility.horizon_min");
+  r.rate = below_one(s, "reduction.rate");
+  r.grow = positive(s, "reduction.grow");
+  r.shrink = below_one(s, "reduction.shrink");
+  r.min_rate = positive(s, "reduction.min_rate");
+  r.max_solves = integer_at_least(s, "reduction.max_solves", 0);
+  r.step_iterations = integer_at_least(s, "reduction.step_iterations", 1);
+  r.minimize_iterations = integer_at_least(s, "reduction.minimize_iterations", 0);
+  r.minimizer = choice<Minimizer>(s, "reduction.minimize",
+                                  {{"elastic", Minimizer::kElastic}, {"branch", Minimizer::kBranch}});
+  r.flip_rounds = integer_at_least(s, "reduction.flip_rounds", 0);
+  r.time_limit = non_negative(s, "reduction.time_limit");
+  return r;
+}
 
 }  // namespace disco

@@ -1,6 +1,11 @@
-// disco — typed solver settings read from a Settings document
-// (configs/disco.yaml plus --set overrides): Ipopt's options and the elastic
-// mode's parameters. Values out of range are InputErrors naming the key.
+// disco — typed solver settings read from a Settings document (configs/disco.yaml plus
+// --set overrides): Ipopt's options, the robot model's options, the elastic mode's
+// parameters and the objective reduction's schedule. This is the one reader of the
+// settings' sections; every range check lives here. Values out of range are InputErrors
+// naming the file, the line and the key (or "--set" and the key).
+//
+// No defaults are kept in code: every value comes from the settings file (the structs
+// below are zero-initialised; what a field means is said next to it).
 #pragma once
 
 #include <initializer_list>
@@ -16,12 +21,32 @@
 
 namespace disco {
 
-std::vector<IpoptOption> ipopt_options(const Settings& settings);  // the `ipopt:` section
-ElasticSettings elastic_settings(const Settings& settings);        // the `elastic:` section
-ModelOptions model_options(const Settings& settings);              // the `model:` section
+// How the objective reduction minimises (reduction.minimize; search/objective_reduction.h,
+// step 3 and its early call).
+enum class Minimizer {
+  kElastic,  // one elastic-mode minimisation, to convergence
+  kBranch,   // a descent by branches: elastic segments and branch descents
+};
 
-// Path of the default settings file shipped with disco (configs/disco.yaml).
-std::string default_settings_path();
+// The objective reduction's schedule (search/objective_reduction.h): the `feasibility:` and
+// `reduction:` sections.
+struct ReductionSettings {
+  Minimizer minimizer = Minimizer::kElastic;
+  double horizon_factor = 0.0;
+  double horizon_min = 0.0;  // s
+  double rate = 0.0, grow = 0.0, shrink = 0.0, min_rate = 0.0;
+  int max_solves = 0;
+  int step_iterations = 0;  // cap on a minimising step before switching to fixed
+                            // steps; kBranch: also Ipopt iterations per elastic segment
+  int minimize_iterations = 0;  // kElastic: cap on the early minimisation (step 3); 0 = none
+  int flip_rounds = 0;      // kBranch: at most this many rounds of flips per branch descent
+  double time_limit = 0.0;  // s; 0 = none
+};
+
+std::vector<IpoptOption> ipopt_options(const Settings& settings);    // the `ipopt:` section
+ElasticSettings elastic_settings(const Settings& settings);          // the `elastic:` section
+ModelOptions model_options(const Settings& settings);                // the `model:` section
+ReductionSettings reduction_settings(const Settings& settings);      // `feasibility:` + `reduction:`
 
 // The value of the text key `key` among `choices` (name, value); any other text is an
 // InputError naming the key and listing the names.

@@ -22,7 +22,7 @@
 //   (eps > sigma: the penalty prefers to violate it, as below the MPCC's optimal horizon).
 //   Only while it has not held at the first sigma is zeta raised (as in step 2: same stall
 //   rule, same zeta_max). Polish (step 3) then fixes the branch; the certificate decides.
-//   3. polish (optional, on by default): the branch NLP in which, for every
+//   3. polish (optional: elastic.polish): the branch NLP in which, for every
 //      pair, the smaller side at the elastic solution is fixed to zero, solved
 //      warm-started. Complementarity then holds exactly up to the constraint
 //      tolerance. If the branch NLP fails, the elastic answer stands.
@@ -60,20 +60,23 @@ enum class Stationarity {
 };
 std::string to_string(Stationarity s);  // "feasible", "strongly stationary", "B-stationary"
 
+// The elastic mode's parameters: the `elastic:` section of configs/disco.yaml
+// (core/config/solver_settings.h, elastic_settings), which holds their values; none are kept
+// here.
 struct ElasticSettings {
   ElasticFormulation formulation = ElasticFormulation::kLumped;
-  double zeta = 10.0;
-  double zeta_factor = 10.0;
-  double zeta_max = 1e6;
-  double stall_change = 1e-3;  // < 0: never stop early
-  double complementarity_tol = 1e-6;
-  double violation_tol = 1e-6;
-  bool polish = true;
+  double zeta = 0.0;           // initial penalty on eps
+  double zeta_factor = 0.0;    // > 1: raise zeta by this factor
+  double zeta_max = 0.0;       // give up beyond this
+  double stall_change = 0.0;   // stop raising when the residual moves less; < 0: never stop early
+  double complementarity_tol = 0.0;
+  double violation_tol = 0.0;
+  bool polish = false;
   // kRelaxed only: the relaxation homotopy.
-  double sigma = 0.1;           // first relaxation
-  double sigma_factor = 0.1;    // next = sigma * factor
-  double sigma_min = 1e-8;      // the last relaxation solved
-  double barrier_ratio = 0.01;  // each relaxed solve ends at mu = ratio * sigma
+  double sigma = 0.0;          // first relaxation
+  double sigma_factor = 0.0;   // next = sigma * factor
+  double sigma_min = 0.0;      // the last relaxation solved
+  double barrier_ratio = 0.0;  // each relaxed solve ends at mu = ratio * sigma
 };
 
 // One call's own limits, as data: the solver keeps no per-call state.
