@@ -67,8 +67,11 @@
 
 namespace disco {
 
+// What to build. ModelOptions{} is the full model of Appendix A; whether disco builds the
+// adaptive one is the setting model.adaptive (configs/disco.yaml, read by model_options in
+// core/config/solver_settings.h), not a default kept here.
 struct ModelOptions {
-  bool adaptive = true;       // false: the full model (every unknown at every step)
+  bool adaptive = false;      // true: only what the scene needs (this header); false: the full model
   double horizon_max = kInf;  // T_max [s]; infinite keeps every pair at every step
 };
 
