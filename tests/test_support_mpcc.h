@@ -18,30 +18,10 @@
 
 namespace disco::test_support {
 
-// The `ipopt:` section of configs/disco.yaml, verbatim, as an explicit option
-// list (so these tests do not depend on the settings loader).
+// The `ipopt:` section of configs/disco.yaml (the settings file the test binary finds): the
+// MPCC-layer tests solve with disco's own options, not a copy of them.
 inline std::vector<IpoptOption> disco_yaml_ipopt_options() {
-  const char* where = "test";
-  return {
-      {"sb", "yes", where},
-      {"print_level", "0", where},
-      {"hessian_approximation", "exact", where},
-      {"linear_solver", "mumps", where},
-      {"tol", "1.0e-9", where},
-      {"constr_viol_tol", "1.0e-9", where},
-      {"acceptable_tol", "1.0e-7", where},
-      {"acceptable_constr_viol_tol", "1.0e-8", where},
-      {"max_iter", "3000", where},
-      {"bound_relax_factor", "0.0", where},
-      {"mu_strategy", "adaptive", where},
-      {"fixed_variable_treatment", "make_parameter", where},
-      {"warm_start_init_point", "yes", where},
-      {"warm_start_bound_push", "1.0e-9", where},
-      {"warm_start_bound_frac", "1.0e-9", where},
-      {"warm_start_slack_bound_push", "1.0e-9", where},
-      {"warm_start_slack_bound_frac", "1.0e-9", where},
-      {"warm_start_mult_bound_push", "1.0e-9", where},
-  };
+  return ipopt_options(Settings::load(default_settings_path()));
 }
 
 // The `elastic:` section of configs/disco.yaml (the settings file the test binary finds).
