@@ -21,9 +21,11 @@
 #include <thread>
 
 #include "core/util/numbers.h"
+#include "core/config/memory_limit.h"
 #include "core/config/settings.h"
 #include "core/config/solver_settings.h"
 #include "core/model/lower_bound.h"
+#include "core/model/model_size.h"
 #include "core/model/solution.h"
 #include "core/util/errors.h"
 #include "core/util/interrupt.h"
@@ -539,6 +541,16 @@ int run_search(const SearchOptions& o) {
   c.elastic = elastic_settings(c.settings);
   IpoptSolver check(ipopt_options(c.settings));  // bad Ipopt options fail here, on every rank
   c.plan = load_search_plan(o.configs, o.starts, 1, scene_sets);
+  // Every scene's model must fit model.memory_limit, shared by this machine's ranks (each
+  // solves one start at a time): refused here, on every rank, before any start runs.
+  MPI_Comm host;
+  int host_ranks = 1;
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &host);
+  MPI_Comm_size(host, &host_ranks);
+  MPI_Comm_free(&host);
+  for (const SceneJob& job : c.plan.scenes)
+    check_model_size(job.scene, model_options(c.settings).adaptive, memory_limit(c.settings),
+                     host_ranks);
 
   if (rank != 0) {
     worker_loop(c);
