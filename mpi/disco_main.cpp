@@ -179,7 +179,8 @@ struct SolveOptions {
 
 // disco solve, once the scene passed the size check.
 int solve_checked(const SolveOptions& o, const Settings& settings, const Scene& scene,
-                  const std::vector<std::string>& scene_sets, const std::string& out_dir) {
+                  const std::vector<std::string>& scene_sets, const std::string& out_dir,
+                  const ModelSizeEstimate& estimate) {
   {
     RobotProblem preview(scene, model_options(settings));
     const double T_max = feasibility_horizon(preview, reduction_settings(settings));
@@ -195,6 +196,8 @@ int solve_checked(const SolveOptions& o, const Settings& settings, const Scene& 
     spdlog::info("  pairs within reach at {} of {} pair-states; {} of {} robots turn",
                  plan.pair_states(), static_cast<int>(scene.pairs.size()) * scene.steps,
                  plan.turning_robots(), static_cast<int>(scene.robots.size()));
+    spdlog::info("  memory of a solve: {}; {} = {}", estimate.describe(), kMemoryLimitKey,
+                 memory_text(memory_limit(settings).bytes));
     if (const auto lb = preview.lower_bound(); lb && std::isfinite(*lb)) {
       spdlog::info("lower bound (robots without contact partners, each alone): {:.6f} s", *lb);
     } else {
@@ -257,9 +260,9 @@ int run_solve(const SolveOptions& o) {
   const std::string out_dir = o.out.empty() ? "out/" + scene.name : o.out;
   // Refuse a model too big for model.memory_limit before building any (--model-only too).
   const bool adaptive = model_options(settings).adaptive;
-  check_model_size(scene, adaptive, memory_limit(settings));
+  const ModelSizeEstimate estimate = check_model_size(scene, adaptive, memory_limit(settings));
   try {
-    return solve_checked(o, settings, scene, scene_sets, out_dir);
+    return solve_checked(o, settings, scene, scene_sets, out_dir, estimate);
   } catch (const std::bad_alloc&) {
     spdlog::error("error: {}", out_of_memory_message("solving " + o.scene, scene, adaptive));
     return 1;
