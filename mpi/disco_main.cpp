@@ -24,8 +24,10 @@
 // Exit status (also in --help, kExitCodes): 0 a certified solution was written (search:
 // for every scene); 3 the run ended without one (status infeasible, failed or
 // elastic_not_tight, still written); 2 bad input or usage (the message names the file,
-// line and key); 1 an internal error; 130 / 143 interrupted by SIGINT / SIGTERM (what
-// finished is written; see search/run_search.h). A second signal ends disco at once.
+// line and key), a scene whose model would exceed model.memory_limit included
+// (core/model/model_size.h); 1 an internal error, or out of memory all the same (the
+// message says so, with the model's estimate); 130 / 143 interrupted by SIGINT / SIGTERM
+// (what finished is written; see search/run_search.h). A second signal ends disco at once.
 #include <mpi.h>
 #include <omp.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
@@ -37,11 +39,13 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <new>
 #include <string>
 #include <vector>
 
 #include "core/config/settings.h"
 #include "core/config/solver_settings.h"
+#include "core/model/model_size.h"
 #include "core/model/scene_yaml.h"
 #include "core/util/errors.h"
 #include "core/util/interrupt.h"
@@ -62,7 +66,8 @@ using json = nlohmann::json;
 
 constexpr const char* kExitCodes =
     "Exit status: 0 certified solution(s) written (search: for every scene); 3 finished "
-    "without a certified solution (for some scene); 2 bad input or usage; 1 internal error; "
+    "without a certified solution (for some scene); 2 bad input or usage (a model above "
+    "model.memory_limit too); 1 internal error or out of memory; "
     "130 / 143 interrupted by SIGINT / SIGTERM (finished work kept; search: continue with "
     "--resume).";
 
@@ -144,6 +149,9 @@ int run_search_command(SearchOptions o, int threads, const Verbosity& verbosity,
     } catch (const InputError& e) {
       if (rank == 0) spdlog::error("error: {}", e.what());
       code = 2;
+    } catch (const std::bad_alloc&) {  // a start's own runs out in run_start (status error)
+      spdlog::error("error: out of memory on rank {}", rank);
+      code = 1;
     } catch (const std::exception& e) {
       spdlog::error("internal error on rank {}: {}", rank, e.what());
       code = 1;
@@ -168,15 +176,10 @@ struct SolveOptions {
   bool model_only = false;
 };
 
-int run_solve(const SolveOptions& o) {
-  std::vector<std::string> scene_sets, settings_sets;
-  split_overrides(o.sets, scene_sets, settings_sets);
-  Settings settings = Settings::load(o.settings);
-  for (const auto& s : settings_sets) settings.apply_override(s);
-  const Scene scene = load_scene(o.scene, scene_sets);
-  set_threads(o.threads);
-  const std::string out_dir = o.out.empty() ? "out/" + scene.name : o.out;
-
+// disco solve, once the scene passed the size check.
+int solve_checked(const SolveOptions& o, const Settings& settings, const Scene& scene,
+                  const std::vector<std::string>& scene_sets, const std::string& out_dir,
+                  const ModelSizeEstimate& estimate) {
   {
     RobotProblem preview(scene, model_options(settings));
     const double T_max = feasibility_horizon(preview, reduction_settings(settings));
@@ -192,6 +195,8 @@ int run_solve(const SolveOptions& o) {
     spdlog::info("  pairs within reach at {} of {} pair-states; {} of {} robots turn",
                  plan.pair_states(), static_cast<int>(scene.pairs.size()) * scene.steps,
                  plan.turning_robots(), static_cast<int>(scene.robots.size()));
+    spdlog::info("  memory of a solve: {}; {} = {}", estimate.describe(), kMemoryLimitKey,
+                 memory_text(memory_limit(settings).bytes));
     if (const auto lb = preview.lower_bound(); lb && std::isfinite(*lb)) {
       spdlog::info("lower bound (robots without contact partners, each alone): {:.6f} s", *lb);
     } else {
@@ -242,6 +247,25 @@ int run_solve(const SolveOptions& o) {
   spdlog::info("{} NLP solves, {} iterations, {:.3f} s; wrote {}", run.info.nlp_solves,
                run.info.iterations, run.info.wall_s, path);
   return run.solved() ? 0 : 3;
+}
+
+int run_solve(const SolveOptions& o) {
+  std::vector<std::string> scene_sets, settings_sets;
+  split_overrides(o.sets, scene_sets, settings_sets);
+  Settings settings = Settings::load(o.settings);
+  for (const auto& s : settings_sets) settings.apply_override(s);
+  const Scene scene = load_scene(o.scene, scene_sets);
+  set_threads(o.threads);
+  const std::string out_dir = o.out.empty() ? "out/" + scene.name : o.out;
+  // Refuse a model too big for model.memory_limit before building any (--model-only too).
+  const bool adaptive = model_options(settings).adaptive;
+  const ModelSizeEstimate estimate = check_model_size(scene, adaptive, memory_limit(settings));
+  try {
+    return solve_checked(o, settings, scene, scene_sets, out_dir, estimate);
+  } catch (const std::bad_alloc&) {
+    spdlog::error("error: {}", out_of_memory_message("solving " + o.scene, scene, adaptive));
+    return 1;
+  }
 }
 
 }  // namespace
@@ -324,6 +348,9 @@ int main(int argc, char** argv) {
   } catch (const InputError& e) {
     spdlog::error("error: {}", e.what());
     return 2;
+  } catch (const std::bad_alloc&) {
+    spdlog::error("error: out of memory");
+    return 1;
   } catch (const std::exception& e) {
     spdlog::error("internal error: {}", e.what());
     return 1;

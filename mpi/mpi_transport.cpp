@@ -32,6 +32,10 @@ Message receive_probed(const MPI_Status& probe) {
 MpiTransport::MpiTransport() {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
   MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  MPI_Comm host;  // the ranks that share this rank's memory (a collective call: every rank)
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &host);
+  MPI_Comm_size(host, &host_ranks_);
+  MPI_Comm_free(&host);
 }
 
 void MpiTransport::send(int to, MessageKind kind, const std::string& body) {

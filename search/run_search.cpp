@@ -12,6 +12,7 @@
 #include "core/config/settings.h"
 #include "core/config/solver_settings.h"
 #include "core/ipopt/ipopt_solver.h"
+#include "core/model/model_size.h"
 #include "core/model/solution.h"
 #include "core/util/interrupt.h"
 #include "search/coordinator.h"
@@ -104,6 +105,11 @@ int run_search(const SearchOptions& o, Transport& transport) {
   c.elastic = elastic_settings(c.settings);
   IpoptSolver check(ipopt_options(c.settings));  // bad Ipopt options fail here, on every rank
   c.plan = load_search_plan(o.configs, o.starts, 1, scene_sets);
+  // Every scene's model must fit model.memory_limit, shared by this machine's ranks (each
+  // solves one start at a time): refused here, on every rank, before any start runs.
+  for (const SceneJob& job : c.plan.scenes)
+    check_model_size(job.scene, model_options(c.settings).adaptive, memory_limit(c.settings),
+                     transport.ranks_on_this_host());
 
   if (c.rank != 0) {
     worker_loop(c, transport);

@@ -3,9 +3,12 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <new>
 #include <stdexcept>
 #include <utility>
 
+#include "core/config/solver_settings.h"
+#include "core/model/model_size.h"
 #include "core/model/solution.h"
 #include "core/util/interrupt.h"
 #include "search/reduction_phases.h"
@@ -161,6 +164,11 @@ StartOutcome run_start(const Scene& scene, const Settings& settings, const Start
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     run.info.wall_s = out.seconds;
     if (solution != nullptr) *solution = solution_json(*run.problem, run.z, run.info);
+  } catch (const std::bad_alloc&) {
+    out.status = StartStatus::kError;
+    const std::string doing =
+        "running start " + std::to_string(start.index) + " of scene '" + scene.name + "'";
+    out.detail = out_of_memory_message(doing, scene, model_options(settings).adaptive);
   } catch (const std::exception& e) {
     out.status = StartStatus::kError;
     out.detail = e.what();

@@ -1,9 +1,10 @@
 // disco — running one start of the search and describing its outcome.
 //
 // run_start() never throws: an exception inside the start (bad data, an
-// internal error) becomes status "error" with the message, so a worker never
-// takes the search down. The time budget caps the whole start (objective
-// reduction) and every elastic solve inside it; a start it cuts short is
+// internal error, running out of memory: core/model/model_size.h's message) becomes
+// status "error" with the message, so a worker never takes the search down. The
+// time budget caps the whole start (objective reduction) and every elastic solve
+// inside it; a start it cuts short is
 // status time_limit, one an interrupt cuts short (core/util/interrupt.h) is
 // status interrupted. Both keep their best point so far (T_f, certificate),
 // and `disco search --resume` runs them again (search/search_record.h).

@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "core/config/solver_settings.h"
+#include "core/model/model_size.h"
 #include "search/guess.h"
 
 namespace disco {
@@ -30,6 +31,7 @@ bool certify_best(const Scene& scene, const RobotProblem& problem, const Elastic
 SceneSolve solve_scene(const Scene& scene, const Settings& settings, const StartSpec& start,
                        double time_budget_s, const SolveCallback& on_solve) {
   const auto t0 = std::chrono::steady_clock::now();
+  check_model_size(scene, model_options(settings).adaptive, memory_limit(settings));
   IpoptSolver ipopt(ipopt_options(settings));
   // The budget caps the reduction, which gives every elastic solve only the time left.
   ReductionSettings schedule = start.schedule;

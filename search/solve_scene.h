@@ -27,7 +27,9 @@ struct SceneSolve {
 
 // Runs `start` (make_start) on `scene`. A time budget > 0 caps the whole
 // objective reduction and every elastic solve inside it.
-// Throws InputError for bad settings (Ipopt options, elastic or reduction keys).
+// Throws InputError for bad settings (Ipopt options, elastic or reduction keys) and for a
+// scene whose model would exceed model.memory_limit (core/model/model_size.h), before
+// building anything.
 SceneSolve solve_scene(const Scene& scene, const Settings& settings, const StartSpec& start,
                        double time_budget_s = 0.0, const SolveCallback& on_solve = {});
 // Start 0, no budget.

@@ -29,6 +29,9 @@ class Transport {
   virtual ~Transport() = default;
   virtual int rank() const = 0;
   virtual int size() const = 0;
+  // How many ranks of the search run on this rank's machine (they share its memory:
+  // model.memory_limit, core/model/model_size.h).
+  virtual int ranks_on_this_host() const = 0;
   // Sends `kind` with `body` to rank `to`.
   virtual void send(int to, MessageKind kind, const std::string& body) = 0;
   // Rank 0: a worker's message, if one has arrived; never blocks.

@@ -6,8 +6,9 @@
 Each check runs disco and looks at its exit status and messages: the scene file may come
 after --set; an unknown command is named, with the closest one; a settings key that is a
 scene key gets the 'scene.' hint, a mistyped one the closest key; --model-only checks every
-option (Ipopt's too); --version; --help lists the exit statuses and the defaults of --starts
-and --out; SIGINT during `disco solve` writes the best point so far and exits 130.
+option (Ipopt's too); a model above model.memory_limit is refused at once (exit 2); --version;
+--help lists the exit statuses and the defaults of --starts and --out; SIGINT during
+`disco solve` writes the best point so far and exits 130.
 """
 import hashlib
 import json
@@ -60,6 +61,16 @@ check(r.returncode == 2 and "ipopt.tolerance" in r.stderr and "Ipopt has no such
       f"--model-only checks Ipopt's options ({r.stderr.strip()[-200:]!r})")
 r = run("solve", AXIS, "--model-only", "--set", "elastic.zeta_max=-1")
 check(r.returncode == 2 and "elastic.zeta_max" in r.stderr, "--model-only checks the elastic settings")
+
+# A size a user can mistype is refused before anything is built (exit 2, at once).
+for command in ("solve", "search"):
+    t0 = time.monotonic()
+    r = run(command, AXIS, "--set", "scene.steps=200000", "--set", "model.memory_limit=8",
+            "--out", os.path.join(WORK, "too_big"), "--force" if command == "search" else "--quiet")
+    seconds = time.monotonic() - t0
+    check(r.returncode == 2 and "--set: key 'steps': the model would need about" in r.stderr and
+          "above model.memory_limit = 8.0 GiB (--set)" in r.stderr and seconds < 20,
+          f"{command}: 200000 steps refused in {seconds:.1f} s, exit {r.returncode} ({r.stderr.strip()[-300:]!r})")
 
 r = run("--version")
 check(r.returncode == 0 and re.fullmatch(r"\d+\.\d+\.\d+ \(git [0-9a-f]+(-dirty)?\)\n|\d+\.\d+\.\d+ \(git unknown\)\n",

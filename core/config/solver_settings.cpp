@@ -1,7 +1,10 @@
 // disco — typed solver settings. See solver_settings.h.
 #include "core/config/solver_settings.h"
 
+#include <cmath>
+
 #include "core/util/errors.h"
+#include "core/util/machine.h"
 
 namespace disco {
 
@@ -55,6 +58,31 @@ std::vector<IpoptOption> ipopt_options(const Settings& settings) {
     out.push_back({e.name, e.value, e.line > 0 ? settings.source() + ":" + std::to_string(e.line)
                                                : std::string("--set")});
   return out;
+}
+
+MemoryLimit memory_limit(const Settings& s) {
+  constexpr double kAutoShare = 0.5;  // auto: this share of the machine's memory
+  constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;
+  const std::string text = s.text(kMemoryLimitKey);  // a missing key fails here, named
+  MemoryLimit m;
+  m.where = s.where(kMemoryLimitKey);
+  if (text == "auto") {
+    const double machine = physical_memory_bytes();
+    m.bytes = kAutoShare * machine;
+    m.auto_meaning = "auto = half of the machine's " + memory_text(machine);
+    return m;
+  }
+  double gib = NAN;
+  try {
+    gib = s.number(kMemoryLimitKey);
+  } catch (const InputError&) {  // not a number: the message below says what is allowed
+  }
+  if (!(gib > 0))
+    throw InputError(located_message(m.where, 0, kMemoryLimitKey,
+                                     "must be 'auto' or a number of GiB > 0 (got '" +
+                                         printable(text, kEchoLimit) + "')"));
+  m.bytes = gib * kGiB;
+  return m;
 }
 
 ModelOptions model_options(const Settings& s) {

@@ -17,6 +17,7 @@
 #include "core/elastic/elastic_solver.h"
 #include "core/ipopt/ipopt_solver.h"
 #include "core/model/model_plan.h"
+#include "core/model/model_size.h"
 #include "core/util/errors.h"
 
 namespace disco {
@@ -46,6 +47,10 @@ struct ReductionSettings {
 std::vector<IpoptOption> ipopt_options(const Settings& settings);    // the `ipopt:` section
 ElasticSettings elastic_settings(const Settings& settings);          // the `elastic:` section
 ModelOptions model_options(const Settings& settings);                // the `model:` section
+// model.memory_limit: `auto` (half of the machine's physical memory, or of its cgroup's
+// limit when lower) or a number of GiB > 0 (.inf: none); checked by core/model/model_size.h
+// before a model is built. Anything else is an InputError naming the file, line and key.
+MemoryLimit memory_limit(const Settings& settings);
 ReductionSettings reduction_settings(const Settings& settings);      // `feasibility:` + `reduction:`
 
 // The value of the text key `key` among `choices` (name, value); any other text is an

@@ -57,10 +57,20 @@ struct Pair {
   double mu = 0;                // contact friction coefficient >= 0 (contact mode)
 };
 
+// Where a scene key was given, for messages made after the scene was read
+// (located_message, core/util/errors.h): the file and its line, or "--set" and line 0
+// with the override's key. An empty source: not known (a scene made in code).
+struct KeyOrigin {
+  std::string source;
+  int line = 0;
+  std::string key;
+};
+
 struct Scene {
   std::string name;             // the scenario's name
   std::string source;           // the file it came from (for messages)
   int steps = 100;              // N_t >= 1
+  KeyOrigin steps_origin;       // where `steps` was given (core/model/model_size.h names it)
   double gravity = 9.81;        // g > 0 [m/s^2]
   std::vector<Robot> robots;    // at least one
   std::vector<Pair> pairs;      // exactly one per robot pair (i < j), in (i, j) order

@@ -167,20 +167,9 @@ class Doc {
   // missing key, its parent) and gives the line.
   [[noreturn]] void fail(const YAML::Node& at, const std::string& path,
                          const std::string& what) const {
-    for (auto it = records_.rbegin(); it != records_.rend(); ++it) {
-      const std::string& p = it->path;
-      if (path.compare(0, p.size(), p) == 0 &&
-          (path.size() == p.size() || path[p.size()] == '.' || path[p.size()] == '[')) {
-        throw InputError(
-            located_message(kOverrideSource, 0, it->key + dotted(path.substr(p.size())), what));
-      }
-    }
-    int line = yaml::line_of(at);
-    // An empty value ("mass:") is marked where the next token starts: use its key's line.
-    if (const auto it = null_lines_.find(path);
-        at.IsDefined() && at.IsNull() && it != null_lines_.end()) {
-      line = it->second;
-    }
+    const KeyOrigin o = origin(at, path);
+    if (o.source == kOverrideSource && o.line == 0)
+      throw InputError(located_message(o.source, 0, o.key, what));
     // The overrides that set values below `path` (e.g. robots.1.start.x for a start
     // overlap reported at robots[1].start) are named too, each once.
     std::string below;
@@ -194,7 +183,25 @@ class Doc {
       }
     }
     if (!below.empty()) below = " (with --set " + below + ")";
-    throw InputError(located_message(source_, line, path, what + below));
+    throw InputError(located_message(source_, o.line, path, what + below));
+  }
+
+  // Where the value at key `path` (node `at`, as for fail) was given: the file and line,
+  // or "--set" with the override's key when an override set it (or a mapping above it).
+  KeyOrigin origin(const YAML::Node& at, const std::string& path) const {
+    for (auto it = records_.rbegin(); it != records_.rend(); ++it) {
+      const std::string& p = it->path;
+      if (path.compare(0, p.size(), p) == 0 &&
+          (path.size() == p.size() || path[p.size()] == '.' || path[p.size()] == '['))
+        return {kOverrideSource, 0, it->key + dotted(path.substr(p.size()))};
+    }
+    int line = yaml::line_of(at);
+    // An empty value ("mass:") is marked where the next token starts: use its key's line.
+    if (const auto it = null_lines_.find(path);
+        at.IsDefined() && at.IsNull() && it != null_lines_.end()) {
+      line = it->second;
+    }
+    return {source_, line, path};
   }
 
   // The entries of mapping `node`, checked: plain unique keys, all in `allowed`. A null
@@ -582,6 +589,7 @@ Scene validate(const Doc& doc, const YAML::Node& root, const std::string& source
   if (scene.steps < 1) {
     doc.fail(steps, "steps", "must be >= 1 (got " + std::to_string(scene.steps) + ")");
   }
+  scene.steps_origin = doc.origin(steps, "steps");
   scene.gravity = 9.81;
   if (const auto it = fields.find("gravity"); it != fields.end()) {
     scene.gravity = doc.positive(it->second, "gravity");
