@@ -22,6 +22,7 @@ namespace disco {
 namespace {
 
 using test_support::disco_yaml_ipopt_options;
+using test_support::tight_warm_start_options;
 using test_support::expect_exact_derivatives;
 
 // Constructs a solver from the valid defaults plus one extra option and
@@ -166,7 +167,7 @@ TEST(IpoptSolverSolve, Hs071HasExactDerivatives) {
 
 TEST(IpoptSolverSolve, Hs071ReachesItsKnownOptimum) {
   const Hs071 nlp;
-  IpoptSolver solver(disco_yaml_ipopt_options());
+  IpoptSolver solver(tight_warm_start_options());  // its last check restarts warm
   NlpPoint start;
   start.z = (Vector(4) << 1.0, 5.0, 5.0, 1.0).finished();
   const NlpResult r = solver.solve(nlp, start);
@@ -399,7 +400,7 @@ TEST(IpoptSolverSolve, WarmStartUsesBoundMultipliersWithoutRows) {
     p.finalize();
     return p;
   };
-  IpoptSolver solver(disco_yaml_ipopt_options());
+  IpoptSolver solver(tight_warm_start_options());
   for (bool dummy_row : {true, false}) {
     SCOPED_TRACE(dummy_row ? "with a dummy row" : "without rows");
     const auto p = make(dummy_row);
@@ -427,7 +428,7 @@ TEST(IpoptSolverSolve, WarmStartInitPointNoStartsTheDualsCold) {
   p.add(PolynomialProgram::kObjective, 1.0, y - Affine(2.0), y - Affine(2.0));
   p.finalize();
   auto iterations_from_the_solution = [&](const std::string& warm_start) {
-    auto options = disco_yaml_ipopt_options();
+    auto options = tight_warm_start_options();
     for (auto& o : options)
       if (o.name == "warm_start_init_point") o.value = warm_start;
     IpoptSolver solver(options);
