@@ -3,8 +3,8 @@
 //   disco solve SCENE.yaml [--out DIR] [--start N [--seed S]] [--threads N] [--settings FILE]
 //               [--set KEY=VALUE ...] [--model-only] [--quiet | --verbose]
 //   disco search CONFIG... [--starts N] [--seed S] [--time-limit SEC] [--out DIR]
-//                [--resume | --force] [--threads N] [--settings FILE] [--set KEY=VALUE ...]
-//                [--quiet | --verbose]                                   (search/run_search.h)
+//                [--resume | --force] [--deterministic] [--threads N] [--settings FILE]
+//                [--set KEY=VALUE ...] [--quiet | --verbose]            (search/run_search.h)
 //   disco --version
 //
 // Options and the file arguments may come in any order; each --set takes one KEY=VALUE
@@ -323,6 +323,9 @@ int main(int argc, char** argv) {
   scmd->add_flag("--force", search.force,
                  "Replace the run OUT holds (without --resume, a non-empty OUT is refused)")
       ->excludes(resume);
+  scmd->add_flag("--deterministic", search.deterministic,
+                 "Each start runs alone (search.share_incumbent=false): the same runs and best "
+                 "for any number of ranks, and on --resume");
   scmd->add_option("--threads", search_threads, "OpenMP threads per rank (default 1)")
       ->check(CLI::PositiveNumber);
   scmd->add_option("--settings", search.settings, "Solver settings file")->capture_default_str();

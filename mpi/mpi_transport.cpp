@@ -5,11 +5,12 @@
 namespace disco {
 namespace {
 
-constexpr int kTag[] = {1, 2, 3};  // by MessageKind: kResult, kTask, kStop
+constexpr int kTag[] = {1, 2, 3, 4, 5};  // by MessageKind: kResult, kTask, kStop, kIncumbent, kProgress
+constexpr int kKinds = sizeof kTag / sizeof kTag[0];
 
 int tag_of(MessageKind kind) { return kTag[static_cast<int>(kind)]; }
 MessageKind kind_of(int tag) {
-  for (int k = 0; k < 3; ++k)
+  for (int k = 0; k < kKinds; ++k)
     if (kTag[k] == tag) return static_cast<MessageKind>(k);
   return MessageKind::kStop;
 }
@@ -45,7 +46,7 @@ void MpiTransport::send(int to, MessageKind kind, const std::string& body) {
 std::optional<Message> MpiTransport::poll() {
   int ready = 0;
   MPI_Status probe;
-  MPI_Iprobe(MPI_ANY_SOURCE, tag_of(MessageKind::kResult), MPI_COMM_WORLD, &ready, &probe);
+  MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &ready, &probe);
   if (!ready) return std::nullopt;
   return receive_probed(probe);
 }

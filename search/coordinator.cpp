@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "core/util/interrupt.h"
+#include "core/util/numbers.h"
 
 namespace disco {
 namespace {
@@ -22,6 +23,9 @@ std::string outcome_words(const StartOutcome& o) {
     case StartStatus::kTimeLimit:
       return fmt::format("time limit ({}, {:.0f} s): {}", to_string(o.budget_source), o.budget, so_far);
     case StartStatus::kInterrupted: return "interrupted: " + so_far;
+    case StartStatus::kDominated:
+      return fmt::format("dominated at T_f {:.6f} (another start reached {:.6f})", o.T_f,
+                         o.incumbent);
     default: return to_string(o.status);
   }
 }
@@ -36,12 +40,49 @@ std::string clock_text(double s) {
 }  // namespace
 
 Coordinator::Coordinator(const SearchPlan& plan, const std::string& out_dir, std::uint64_t seed,
-                         double time_limit, bool resumed)
+                         double time_limit, bool resumed, bool share_incumbent)
     : plan_(plan),
+      share_(share_incumbent),
       t0_(std::chrono::steady_clock::now()),
-      record_(plan, out_dir, seed, resumed),
-      queue_(plan, time_limit, record_.done()) {
+      record_(plan, out_dir, seed, resumed, share_incumbent),
+      queue_(plan, time_limit, record_.done()),
+      incumbent_(plan.scenes.size(), kInf),
+      improved_(plan.scenes.size(), false) {
+  for (std::size_t s = 0; s < plan.scenes.size(); ++s)  // a resumed run's bests
+    if (const auto b = record_.best_T_f(static_cast<int>(s))) lower_incumbent(static_cast<int>(s), *b);
   record_.write_best(queue_, seconds(), interrupt_requested());
+}
+
+void Coordinator::lower_incumbent(int s, double T_f) {
+  if (!share_ || s < 0 || !(T_f < incumbent_[s])) return;
+  incumbent_[s] = T_f;
+  improved_[s] = true;
+}
+
+double Coordinator::incumbent(int scene) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return incumbent_[scene];
+}
+
+void Coordinator::progress(int scene, double T_f) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  lower_incumbent(scene, T_f);
+}
+
+void Coordinator::on_progress(const std::string& body) {
+  const json msg = json::parse(body);
+  progress(msg.at("scene").get<int>(), msg.at("T_f").get<double>());
+}
+
+std::vector<Coordinator::Outgoing> Coordinator::take_outbox() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<Outgoing> out;
+  for (const auto& [task, r] : queue_.running())
+    if (improved_[task.first] && r.rank != 0)
+      out.push_back({r.rank, MessageKind::kIncumbent,
+                     json{{"scene", task.first}, {"T_f", incumbent_[task.first]}}.dump()});
+  std::fill(improved_.begin(), improved_.end(), false);
+  return out;
 }
 
 double Coordinator::seconds() const {
@@ -57,7 +98,9 @@ int Coordinator::scene_index(const std::string& name) const {
 std::optional<Task> Coordinator::next(int rank) {
   std::lock_guard<std::mutex> lock(mutex_);
   if (interrupt_requested()) return std::nullopt;
-  return queue_.next(rank, seconds());
+  auto task = queue_.next(rank, seconds());
+  if (task) task->incumbent = incumbent_[task->scene];
+  return task;
 }
 
 void Coordinator::record(StartOutcome o, const json* solution) {
@@ -67,6 +110,7 @@ void Coordinator::record(StartOutcome o, const json* solution) {
   const int s = scene_index(o.scene);
   if (s >= 0) queue_.finished(s, o.start);
   record_.record(o, solution, now, s >= 0 ? queue_.scene_started(s) : 0.0);
+  if (o.certified()) lower_incumbent(s, o.T_f);
   record_.write_best(queue_, now, interrupt_requested());
   spdlog::info("[{}/{}] {} start {} (rank {}): {} in {:.1f} s | best {} | {}", record_.finished(),
                queue_.total(), o.scene, o.start, o.rank, outcome_words(o), o.seconds,

@@ -14,6 +14,13 @@
 // short says "time limit (search, 20 s): T_f 2.380710 so far" or "interrupted: ...".
 // status_text() is the live status line (mpi/live_line.h): starts done / total, elapsed,
 // ETA, best T_f, and the starts running (scene #start, rank, seconds so far).
+//
+// The shared incumbent (search.share_incumbent; search/reduction_phases.h says how a start
+// uses it): the smallest certified T_f of each scene recorded, or reported by a start still
+// running (progress()), so far. A task carries its scene's incumbent when handed out; when
+// an incumbent improves, take_outbox() gives one kIncumbent message for every worker rank
+// then running a start of that scene (rank 0's own worker reads incumbent() instead). Not
+// shared, the incumbent is +inf everywhere and no message is made: each start runs alone.
 #pragma once
 
 #include <chrono>
@@ -22,6 +29,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "search/run_start.h"
 #include "search/search_plan.h"
@@ -35,8 +43,9 @@ class Coordinator {
  public:
   // The output directory `out_dir` is prepared (search/run_manifest.h); `resumed`: it
   // holds an earlier run of the same command, whose final starts are skipped.
+  // `share_incumbent`: search.share_incumbent (false: the deterministic mode).
   Coordinator(const SearchPlan& plan, const std::string& out_dir, std::uint64_t seed,
-              double time_limit, bool resumed);
+              double time_limit, bool resumed, bool share_incumbent);
 
   // The next task for `rank`, or none: all handed out, a time limit, or an interrupt.
   std::optional<Task> next(int rank);
@@ -51,6 +60,21 @@ class Coordinator {
     std::string body;
   };
   Reply on_result(int rank, const std::string& body);
+
+  // Scene `scene`'s incumbent (s; +inf: none, or not shared).
+  double incumbent(int scene);
+  // A start still running found a certified T_f for scene `scene` (s).
+  void progress(int scene, double T_f);
+  // A worker's kProgress message: {"scene": index, "start": k, "T_f": seconds}.
+  void on_progress(const std::string& body);
+  // The kIncumbent messages to send now: {"scene": index, "T_f": seconds} to each worker rank
+  // running a start of a scene whose incumbent improved since the last call.
+  struct Outgoing {
+    int to = 0;
+    MessageKind kind = MessageKind::kIncumbent;
+    std::string body;
+  };
+  std::vector<Outgoing> take_outbox();
 
   // At the end: best.json, with whether a time limit left tasks undone.
   void finish();
@@ -71,11 +95,17 @@ class Coordinator {
   std::string clock_locked() const;  // "elapsed HH:MM:SS ETA HH:MM:SS"
   int scene_index(const std::string& name) const;
 
+  // Lowers scene s's incumbent to T_f if that is lower (and marks it for take_outbox()).
+  void lower_incumbent(int s, double T_f);
+
   const SearchPlan& plan_;
+  const bool share_;
   std::chrono::steady_clock::time_point t0_;
   std::mutex mutex_;
   SearchRecord record_;
   TaskQueue queue_;
+  std::vector<double> incumbent_;  // per scene, s (+inf: none)
+  std::vector<bool> improved_;     // per scene: incumbent lowered since take_outbox()
 };
 
 }  // namespace disco

@@ -218,7 +218,8 @@ std::string solve_log_line(int number, const SolveRecord& r) {
 
 ReductionResult reduce_objective(RobotProblem& problem, const ElasticSolver& solver,
                                  const ReductionSettings& cfg, const GuessFunction& guess,
-                                 const SolveCallback& on_solve, const PerturbFunction& perturb) {
+                                 const SolveCallback& on_solve, const PerturbFunction& perturb,
+                                 const IncumbentFunction& incumbent) {
   ReductionResult out;
   Reduction run{problem, solver, cfg, out, on_solve, std::chrono::steady_clock::now()};
 
@@ -271,7 +272,7 @@ ReductionResult reduce_objective(RobotProblem& problem, const ElasticSolver& sol
       case Phase::kMinimizingStep:
       case Phase::kFixedStep:
       case Phase::kProbe: {  // 2. T_f <= (1 - r) T_best, minimised or fixed
-        const double bound = step_bound(s, out.T_best);
+        const double bound = step_bound(s, step_reference(o, cfg));
         const bool fixed = s.phase != Phase::kMinimizingStep;
         MpccResult r = run.step(
             {fixed ? Horizon::kFixed : Horizon::kBound, bound, fixed ? 0 : cfg.step_iterations},
@@ -293,12 +294,14 @@ ReductionResult reduce_objective(RobotProblem& problem, const ElasticSolver& sol
     }
     o.T_best = out.T_best;
     o.out_of_time = run.out_of_time();
+    if (incumbent) o.incumbent = incumbent();
   }
   // Free the horizon again: the problem is the model itself for later users.
   problem.limit_horizon(kInf);
   if (out.found) out.status = MpccStatus::kSolved;
   out.stop = s.stop == StopReason::kOutOfTime && interrupt_requested() ? StopReason::kInterrupted
                                                                        : s.stop;
+  out.incumbent = o.incumbent;
   out.seconds = run.elapsed();
   return out;
 }

@@ -83,6 +83,7 @@
 #include "core/config/solver_settings.h"  // ReductionSettings, Minimizer, reduction_settings
 #include "core/elastic/elastic_solver.h"
 #include "core/model/robot_problem.h"
+#include "core/util/numbers.h"
 
 namespace disco {
 
@@ -143,6 +144,7 @@ struct ReductionResult {
     double T_f = 0.0;
   };
   std::vector<Improvement> history;
+  double incumbent = kInf;  // s: the scene's incumbent when the loop ended (+inf: none)
 };
 
 // The first feasibility horizon (step 1) for `problem`, in seconds.
@@ -161,11 +163,16 @@ struct Perturbation {
 // horizon must not exceed the feasible point's.
 using PerturbFunction = std::function<Perturbation(const Vector& feasible)>;
 
+// The best certified T_f (s) that other starts of a search found for the scene so far, +inf
+// if none: the shared incumbent (search/reduction_phases.h). Called between solves only.
+using IncumbentFunction = std::function<double()>;
+
 // `guess` defaults to smoothstep_guess (search/guess.h); without `perturb`,
-// step 1b is skipped.
+// step 1b is skipped; without `incumbent` there is none (+inf).
 ReductionResult reduce_objective(RobotProblem& problem, const ElasticSolver& solver,
                                  const ReductionSettings& settings, const GuessFunction& guess = {},
                                  const SolveCallback& on_solve = {},
-                                 const PerturbFunction& perturb = {});
+                                 const PerturbFunction& perturb = {},
+                                 const IncumbentFunction& incumbent = {});
 
 }  // namespace disco

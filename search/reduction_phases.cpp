@@ -22,6 +22,14 @@ ReductionState finish(ReductionState s, const PhaseOutcome& o, StopReason why) {
   return s;
 }
 
+// The start cannot get below the incumbent (another start's best): it stops, without the
+// final minimisation (its local optimum would not win the scene either).
+ReductionState dominated(ReductionState s) {
+  s.stop = StopReason::kDominated;
+  s.phase = Phase::kDone;
+  return s;
+}
+
 // `s` asks for a step of kind s.phase next: run it, or end the loop. A step whose bound lies
 // below `smallest` cannot succeed, so the rate shrinks until it does not.
 ReductionState admit(ReductionState s, const PhaseOutcome& o, const ReductionSettings& cfg) {
@@ -31,8 +39,13 @@ ReductionState admit(ReductionState s, const PhaseOutcome& o, const ReductionSet
     return s;
   }
   if (s.steps >= cfg.max_solves) return finish(s, o, StopReason::kMaxSolves);
-  while (s.rate >= cfg.min_rate && step_bound(s, o.T_best) < o.smallest) s.rate *= cfg.shrink;
-  if (s.rate < cfg.min_rate) return finish(s, o, StopReason::kMinRate);
+  const double reference = step_reference(o, cfg);
+  while (s.rate >= cfg.min_rate && step_bound(s, reference) < o.smallest) s.rate *= cfg.shrink;
+  if (s.rate < cfg.min_rate) {
+    // Aiming below the incumbent, no rate is left: it cannot get below it. Dominated.
+    if (reference < o.T_best) return dominated(s);
+    return finish(s, o, StopReason::kMinRate);
+  }
   return s;
 }
 
@@ -40,7 +53,17 @@ ReductionState with_phase(ReductionState s, Phase phase) {
   s.phase = phase;
   return s;
 }
+
+// The phases whose solve is a step of the reduction (they count towards dominated_after).
+bool is_step(Phase phase) {
+  return phase == Phase::kMinimizingStep || phase == Phase::kFixedStep ||
+         phase == Phase::kProbe || phase == Phase::kEarlyMinimize;
+}
 }  // namespace
+
+double step_reference(const PhaseOutcome& o, const ReductionSettings& cfg) {
+  return cfg.jump_to_incumbent ? std::min(o.T_best, o.incumbent) : o.T_best;
+}
 
 SolveKind solve_kind(Phase phase) {
   switch (phase) {
@@ -71,6 +94,11 @@ std::string stop_line(StopReason reason, const ReductionSettings& cfg) {
                          cfg.min_rate);
     case StopReason::kLocalOptimum:
       return "stopped: a local optimum (a fixed step below it found nothing better)";
+    case StopReason::kDominated:
+      return fmt::format("stopped: dominated (its best stayed above the best another start found, "
+                         "for reduction.dominated_after = {} steps or until no reduction.rate "
+                         ">= reduction.min_rate = {:g} was left below it)",
+                         cfg.dominated_after, cfg.min_rate);
   }
   return "stopped";
 }
@@ -84,6 +112,12 @@ ReductionState begin_reduction(const ReductionSettings& cfg) {
 ReductionState next_phase(const ReductionState& state, const PhaseOutcome& o,
                           const ReductionSettings& cfg) {
   ReductionState s = state;
+  if (is_step(state.phase)) {
+    // Dominated: after dominated_after steps in a row, its best is still above what another
+    // start found. It cannot win the scene within that effort: stop (no final minimisation).
+    s.above_incumbent = o.T_best > o.incumbent ? s.above_incumbent + 1 : 0;
+    if (cfg.dominated_after > 0 && s.above_incumbent >= cfg.dominated_after) return dominated(s);
+  }
   switch (state.phase) {
     case Phase::kFeasibility:
       s.attempt += 1;

@@ -12,11 +12,20 @@
 //   kProbe --new best--> kFixedStep;  --no new best--> kDone
 //   any step, before it runs: past the time limit -> kDone; max_solves steps made, or no rate
 //   >= min_rate keeps the bound above the smallest horizon -> kFinalMinimize (fixed steps
-//   that have not been minimised since their last new best) or kDone.
+//   that have not been minimised since their last new best) or kDone; the start's best above
+//   the scene's incumbent for reduction.dominated_after steps in a row, or no rate >=
+//   min_rate left for a step aimed below the incumbent -> kDone (dominated).
+//
+// The incumbent (search/README.md, "The shared incumbent") is the best certified T_f of the
+// scene found by other starts, +inf when none is known or the search is deterministic. With
+// reduction.jump_to_incumbent a step asks for (1 - r) min(T_best, incumbent): a start whose
+// best is above the incumbent aims straight below it. With an infinite incumbent every rule
+// here is the one without it, step for step.
 #pragma once
 
 #include <string>
 
+#include "core/util/numbers.h"
 #include "search/objective_reduction.h"
 
 namespace disco {
@@ -44,6 +53,9 @@ enum class StopReason {
   kMinRate,          // the rate fell below reduction.min_rate (or no rate >= it keeps the
                      // bound above the smallest horizon)
   kLocalOptimum,     // a fixed step below a local optimum (a probe) gave nothing better
+  kDominated,        // its best stayed above the scene's incumbent (another start's best) for
+                     // reduction.dominated_after steps in a row, or no rate was left to aim
+                     // below it
 };
 // The solve log's last line: "stopped: ..." in words, with the settings it names.
 std::string stop_line(StopReason reason, const ReductionSettings& settings);
@@ -55,6 +67,7 @@ struct ReductionState {
   int steps = 0;            // steps made (minimising, fixed and probes)
   bool minimized = false;   // minimised since the last fixed step that gave a new best
   bool cut_short = false;   // an early minimisation stopped at minimize_iterations
+  int above_incumbent = 0;  // steps in a row after which the best was above the incumbent
   StopReason stop = StopReason::kNone;  // set by the transition that ends the loop
 };
 
@@ -68,14 +81,18 @@ struct PhaseOutcome {
   double smallest = 0.0;      // s, no step is asked below this (lower bound, model minimum)
   bool perturb = false;       // step 1b is asked for
   bool out_of_time = false;   // the time limit has passed
+  double incumbent = kInf;    // s, the scene's best from other starts (+inf: none known)
 };
 
 ReductionState begin_reduction(const ReductionSettings& settings);
 ReductionState next_phase(const ReductionState& state, const PhaseOutcome& outcome,
                           const ReductionSettings& settings);
-// The T_f a step asks for (its bound, or its fixed horizon), in seconds.
-inline double step_bound(const ReductionState& state, double T_best) {
-  return (1.0 - state.rate) * T_best;
+// The T_f a step's rate applies to, in seconds: the start's best, or the incumbent when it is
+// lower and reduction.jump_to_incumbent is set.
+double step_reference(const PhaseOutcome& outcome, const ReductionSettings& settings);
+// The T_f a step asks for (its bound, or its fixed horizon), in seconds, from its reference.
+inline double step_bound(const ReductionState& state, double reference) {
+  return (1.0 - state.rate) * reference;
 }
 
 }  // namespace disco

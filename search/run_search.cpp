@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <condition_variable>
 #include <csignal>
 #include <chrono>
@@ -14,7 +15,9 @@
 #include "core/ipopt/ipopt_solver.h"
 #include "core/model/model_size.h"
 #include "core/model/solution.h"
+#include "core/util/check.h"
 #include "core/util/interrupt.h"
+#include "core/util/numbers.h"
 #include "search/coordinator.h"
 #include "search/run_manifest.h"
 #include "search/run_start.h"
@@ -35,19 +38,31 @@ struct Context {
   ElasticSettings elastic;
   std::uint64_t seed = 1;
   int rank = 0;
+  bool share = false;  // search.share_incumbent (false: --deterministic)
 };
 
-StartOutcome run_task(const Context& c, const Task& t, json* solution) {
+// How a start running on this rank meets the shared incumbent (search/coordinator.h):
+// `incumbent` gives its scene's, `found` passes on a new best of its own. Both are called
+// between solves only. Unset when the incumbent is not shared.
+struct IncumbentLink {
+  IncumbentFunction incumbent;
+  std::function<void(double T_f)> found;
+};
+
+StartOutcome run_task(const Context& c, const Task& t, json* solution, const IncumbentLink& link) {
   const Scene& scene = c.plan.scenes[t.scene].scene;
   const StartSpec spec = make_start(scene, c.seed, t.start, c.schedule, c.elastic);
   // --verbose: every elastic-mode solve of every start, on the rank that runs it.
+  const bool verbose = spdlog::should_log(spdlog::level::debug);
   SolveCallback on_solve;
-  if (spdlog::should_log(spdlog::level::debug)) {
+  if (verbose || link.found) {
     on_solve = [&, count = 0](const SolveRecord& r) mutable {
-      spdlog::debug("  {} start {}: {}", scene.name, t.start, solve_log_line(++count, r));
+      if (verbose) spdlog::debug("  {} start {}: {}", scene.name, t.start, solve_log_line(++count, r));
+      if (link.found && r.improved) link.found(r.T_f);
     };
   }
-  StartOutcome o = run_start(scene, c.settings, spec, t.budget, t.source, solution, on_solve);
+  StartOutcome o = run_start(scene, c.settings, spec, t.budget, t.source, solution, on_solve,
+                             link.incumbent);
   if (solution != nullptr && !solution->is_null())
     (*solution)["provenance"] = provenance_json(
         {"search", scene.source, c.plan.scenes[t.scene].overrides, c.sets, c.seed, t.start},
@@ -61,27 +76,60 @@ StartOutcome run_task(const Context& c, const Task& t, json* solution) {
 // outcome (with the solution file when certified), until rank 0 says stop.
 void worker_loop(const Context& c, Transport& transport) {
   transport.send(0, MessageKind::kResult, "{}");  // the first request
+  std::vector<double> incumbent(c.plan.scenes.size(), kInf);  // what rank 0 said, per scene
+  auto take = [&](const Message& m) {
+    DISCO_CHECK(m.kind == MessageKind::kIncumbent, "rank 0 sends a running start incumbents only");
+    const json j = json::parse(m.body);
+    const auto scene = j.at("scene").get<std::size_t>();
+    double& x = incumbent.at(scene);
+    x = std::min(x, j.at("T_f").get<double>());
+    spdlog::debug("rank {}: incumbent of {} now {:.6f} (from rank 0)", c.rank,
+                  c.plan.scenes.at(scene).scene.name, x);
+  };
   while (true) {
     const Message msg = transport.receive();
+    if (msg.kind == MessageKind::kIncumbent) {  // sent while the last start was running
+      take(msg);
+      continue;
+    }
     if (msg.kind == MessageKind::kStop) return;
+    const Task task = Task::from_json(json::parse(msg.body));
+    IncumbentLink link;
+    if (c.share) {
+      incumbent[task.scene] = std::min(incumbent[task.scene], task.incumbent);
+      link.incumbent = [&] {
+        while (const auto m = transport.poll()) take(*m);
+        return incumbent[task.scene];
+      };
+      link.found = [&](double T_f) {
+        transport.send(0, MessageKind::kProgress,
+                       json{{"scene", task.scene}, {"start", task.start}, {"T_f", T_f}}.dump());
+      };
+    }
     json solution;
-    const StartOutcome o = run_task(c, Task::from_json(json::parse(msg.body)), &solution);
+    const StartOutcome o = run_task(c, task, &solution, link);
     json reply = {{"outcome", o.to_json()}};
     if (o.certified()) reply["solution"] = solution;
     transport.send(0, MessageKind::kResult, reply.dump());
   }
 }
 
-// Rank 0's coordinator thread: answers every worker until each has been told to stop.
-void coordinator_loop(Coordinator& coordinator, Transport& transport) {
+}  // namespace
+
+void serve_workers(Coordinator& coordinator, Transport& transport) {
   int active = transport.size() - 1;
   while (active > 0) {
     // Poll rather than block: a blocking probe spins a core in Open MPI,
     // and that core is rank 0's own worker's. Solves take seconds; 2 ms of
     // latency costs nothing.
+    for (const auto& m : coordinator.take_outbox()) transport.send(m.to, m.kind, m.body);
     const auto msg = transport.poll();
     if (!msg) {
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      continue;
+    }
+    if (msg->kind == MessageKind::kProgress) {
+      coordinator.on_progress(msg->body);
       continue;
     }
     const Coordinator::Reply reply = coordinator.on_result(msg->source, msg->body);
@@ -89,8 +137,6 @@ void coordinator_loop(Coordinator& coordinator, Transport& transport) {
     if (reply.kind == MessageKind::kStop) --active;
   }
 }
-
-}  // namespace
 
 int run_search(const SearchOptions& o, Transport& transport) {
   Context c;
@@ -101,6 +147,8 @@ int run_search(const SearchOptions& o, Transport& transport) {
   split_overrides(o.sets, scene_sets, settings_sets);
   c.settings = Settings::load(o.settings);
   for (const auto& s : settings_sets) c.settings.apply_override(s);
+  if (o.deterministic) c.settings.apply_override(std::string(kShareIncumbentKey) + "=false");
+  c.share = share_incumbent(c.settings);
   c.schedule = reduction_settings(c.settings);
   c.elastic = elastic_settings(c.settings);
   IpoptSolver check(ipopt_options(c.settings));  // bad Ipopt options fail here, on every rank
@@ -124,9 +172,9 @@ int run_search(const SearchOptions& o, Transport& transport) {
       o.out, o.resume ? OutDirMode::kResume : o.force ? OutDirMode::kForce : OutDirMode::kFresh,
       manifest);
   if (o.resume && earlier == 0) spdlog::info("resume: {} holds no run yet; starting afresh", o.out);
-  Coordinator coordinator(c.plan, o.out, o.seed, o.time_limit, earlier > 0);
+  Coordinator coordinator(c.plan, o.out, o.seed, o.time_limit, earlier > 0, c.share);
   std::thread answering;
-  if (transport.size() > 1) answering = std::thread([&] { coordinator_loop(coordinator, transport); });
+  if (transport.size() > 1) answering = std::thread([&] { serve_workers(coordinator, transport); });
   // The live line: refreshed every second by a thread that only reads the
   // search's state and calls on_status (no transport, no solver).
   std::mutex tick_mutex;
@@ -142,8 +190,13 @@ int run_search(const SearchOptions& o, Transport& transport) {
     });
   }
   while (const auto t = coordinator.next(0)) {  // rank 0 works too
+    IncumbentLink link;
+    if (c.share) {
+      link.incumbent = [&] { return coordinator.incumbent(t->scene); };
+      link.found = [&](double T_f) { coordinator.progress(t->scene, T_f); };
+    }
     json solution;
-    const StartOutcome out = run_task(c, *t, &solution);
+    const StartOutcome out = run_task(c, *t, &solution, link);
     coordinator.record(out, out.certified() ? &solution : nullptr);
   }
   if (answering.joinable()) answering.join();

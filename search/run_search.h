@@ -37,10 +37,21 @@ struct SearchOptions {
   std::string out = "runs/search";
   bool resume = false;
   bool force = false;  // replace what DIR holds (search/run_manifest.h)
+  // --deterministic: search.share_incumbent = false (each start runs alone: the same runs and
+  // best for any number of ranks, and on --resume).
+  bool deterministic = false;
   // Rank 0: called about once a second with the live status line (starts done,
   // elapsed, ETA, best T_f, starts running) and with "" at the end. Unset: none.
   std::function<void(const std::string&)> on_status;
 };
+
+class Coordinator;  // search/coordinator.h
+
+// Rank 0's side of the transport (run by run_search on a second thread of rank 0): answers
+// every worker (ranks 1..size-1) until each has been told to stop, passes on the running
+// starts' progress and sends the coordinator's incumbent messages as they arise. It polls
+// (a blocking probe would spin a core in Open MPI, the core of rank 0's own worker).
+void serve_workers(Coordinator& coordinator, Transport& transport);
 
 // Runs the search on every rank of `transport`. Returns the process exit status (0: every
 // scene has a certified solution; 3: some scene has none; 2: bad input, reported on rank

@@ -28,7 +28,7 @@ constexpr std::pair<StartStatus, const char*> kStatusNames[] = {
     {StartStatus::kSolved, "solved"},         {StartStatus::kInfeasible, "infeasible"},
     {StartStatus::kFailed, "failed"},         {StartStatus::kElasticNotTight, "elastic_not_tight"},
     {StartStatus::kError, "error"},           {StartStatus::kTimeLimit, "time_limit"},
-    {StartStatus::kInterrupted, "interrupted"}};
+    {StartStatus::kInterrupted, "interrupted"}, {StartStatus::kDominated, "dominated"}};
 constexpr std::pair<BudgetSource, const char*> kSourceNames[] = {{BudgetSource::kNone, "none"},
                                                                  {BudgetSource::kStart, "start"},
                                                                  {BudgetSource::kScene, "scene"},
@@ -89,6 +89,7 @@ json StartOutcome::to_json() const {
           {"guess", to_string(guess)},
           {"schedule", schedule},
           {"history", history},
+          {"incumbent", number_or_null(incumbent)},
           {"rank", rank},
           {"finished_s", finished_s}};
 }
@@ -117,6 +118,7 @@ StartOutcome StartOutcome::from_json(const json& j) {
   o.guess = guess_kind_from_string(j.value("guess", "straight"));
   o.schedule = j.value("schedule", json::object());
   o.history = j.value("history", std::vector<std::array<double, 2>>{});
+  if (j.contains("incumbent")) o.incumbent = number_or_nan(j["incumbent"]);
   o.rank = j.value("rank", 0);
   o.finished_s = j.value("finished_s", -1.0);
   return o;
@@ -124,7 +126,7 @@ StartOutcome StartOutcome::from_json(const json& j) {
 
 StartOutcome run_start(const Scene& scene, const Settings& settings, const StartSpec& start,
                        double time_budget_s, BudgetSource budget_source, json* solution,
-                       const SolveCallback& on_solve) {
+                       const SolveCallback& on_solve, const IncumbentFunction& incumbent) {
   const auto t0 = std::chrono::steady_clock::now();
   StartOutcome out;
   out.scene = scene.name;
@@ -136,7 +138,7 @@ StartOutcome run_start(const Scene& scene, const Settings& settings, const Start
   out.budget = time_budget_s;
   out.budget_source = time_budget_s > 0 ? budget_source : BudgetSource::kNone;
   try {
-    SceneSolve run = solve_scene(scene, settings, start, time_budget_s, on_solve);
+    SceneSolve run = solve_scene(scene, settings, start, time_budget_s, on_solve, incumbent);
     const ReductionResult& r = run.result;
     out.status = status_of(r.status);
     out.stopped = stop_line(r.stop, start.schedule);
@@ -145,6 +147,7 @@ StartOutcome run_start(const Scene& scene, const Settings& settings, const Start
     out.time_to_first_feasible = r.time_to_first_feasible;
     out.time_to_best = r.time_to_best;
     for (const auto& i : r.history) out.history.push_back({i.seconds, i.T_f});
+    if (std::isfinite(r.incumbent)) out.incumbent = r.incumbent;
     if (r.found) {
       out.T_f = r.T_best;
     } else {
@@ -155,6 +158,8 @@ StartOutcome run_start(const Scene& scene, const Settings& settings, const Start
     // Cut short: the reduction ended on the clock, not by its own rules.
     if (interrupt_requested()) {
       out.status = StartStatus::kInterrupted;
+    } else if (r.found && r.stop == StopReason::kDominated) {
+      out.status = StartStatus::kDominated;
     } else if (time_budget_s > 0 && r.seconds >= time_budget_s) {
       out.status = StartStatus::kTimeLimit;
     }

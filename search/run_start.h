@@ -26,7 +26,7 @@
 namespace disco {
 
 // How a start ended. In runs.jsonl: "solved", "infeasible", "failed", "elastic_not_tight",
-// "error", "time_limit", "interrupted".
+// "error", "time_limit", "interrupted", "dominated".
 enum class StartStatus {
   kSolved,           // ran to its end with a certified point
   kInfeasible,       // ran to its end; no feasible point (MpccStatus::kInfeasible)
@@ -35,6 +35,8 @@ enum class StartStatus {
   kError,            // an exception; `detail` has its message
   kTimeLimit,        // cut short by its time budget; T_f is its best so far (NaN: none)
   kInterrupted,      // cut short by SIGINT or SIGTERM; T_f is its best so far (NaN: none)
+  kDominated,        // stopped: its best stayed above another start's (the shared incumbent,
+                     // search/reduction_phases.h); T_f is its best, certified
 };
 std::string to_string(StartStatus s);
 // The status named by `text` (as to_string gives it); std::invalid_argument otherwise.
@@ -67,6 +69,8 @@ struct StartOutcome {
   nlohmann::json schedule;  // StartSpec::schedule_json(): the reduction schedule and zeta
   // Every new best of the start: [seconds within the start, T_f] (ReductionResult::history).
   std::vector<std::array<double, 2>> history;
+  // s: the scene's shared incumbent when the start ended (NaN: none; search/reduction_phases.h)
+  double incumbent = std::numeric_limits<double>::quiet_NaN();
   int rank = 0;
   double finished_s = -1.0;  // search time when rank 0 recorded it (set by the coordinator)
   bool solved() const { return status == StartStatus::kSolved; }
@@ -81,12 +85,14 @@ struct StartOutcome {
   static StartOutcome from_json(const nlohmann::json& j);
 };
 
-// Runs `start` on `scene` with a time budget (s; 0 = none) set by `budget_source`; `solution` (if not null) receives the solution
-// file of the best point (schema: core/model/solution.h); `on_solve` (if set)
-// is called after every elastic-mode solve.
+// Runs `start` on `scene` with a time budget (s; 0 = none) set by `budget_source`; `solution`
+// (if not null) receives the solution file of the best point (schema: core/model/solution.h);
+// `on_solve` (if set) is called after every elastic-mode solve; `incumbent` (if set) gives the
+// scene's best from other starts between solves (search/reduction_phases.h).
 StartOutcome run_start(const Scene& scene, const Settings& settings, const StartSpec& start,
                        double time_budget_s, BudgetSource budget_source,
                        nlohmann::json* solution = nullptr,
-                       const SolveCallback& on_solve = {});
+                       const SolveCallback& on_solve = {},
+                       const IncumbentFunction& incumbent = {});
 
 }  // namespace disco

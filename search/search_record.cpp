@@ -23,8 +23,8 @@ bool is_final(const StartOutcome& o, const SceneJob& job) {
 }
 
 SearchRecord::SearchRecord(const SearchPlan& plan, const std::string& out_dir, std::uint64_t seed,
-                           bool resumed)
-    : plan_(plan), out_(out_dir), seed_(seed), best_(plan.scenes.size()) {
+                           bool resumed, bool shared)
+    : plan_(plan), out_(out_dir), seed_(seed), shared_(shared), best_(plan.scenes.size()) {
   const std::string runs = out_dir + "/runs.jsonl";
   if (resumed) read_earlier(runs, seed);
   finished_ = static_cast<int>(done_.size());
@@ -131,6 +131,11 @@ void SearchRecord::read_earlier(const std::string& path, std::uint64_t seed) {
                again > 0 ? fmt::format("; {} cut short there run again", again) : "");
 }
 
+std::optional<double> SearchRecord::best_T_f(int s) const {
+  if (best_[s].start < 0) return std::nullopt;
+  return best_[s].T_f;
+}
+
 bool SearchRecord::all_solved() const {
   return std::all_of(best_.begin(), best_.end(), [](const Best& b) { return b.start >= 0; });
 }
@@ -183,6 +188,7 @@ void SearchRecord::write_best(const TaskQueue& queue, double now, bool interrupt
     scenes[scene.name] = j;
   }
   const json doc = {{"seed", seed_},
+                    {"mode", shared_ ? "shared" : "deterministic"},
                     {"elapsed_s", now},
                     {"starts_total", queue.total()},
                     {"starts_finished", finished_},

@@ -5,7 +5,8 @@
 //                   a start cut short by a time limit (status time_limit) or an interrupt
 //                   (interrupted), with its best point so far; each line is flushed and
 //                   fsync'ed as it is written, so a kill loses no finished start;
-//   best.json       per scene: the best certified T_f, its start, starts run and solved,
+//   best.json       the mode ("shared": starts shared the incumbent, or "deterministic");
+//                   per scene: the best certified T_f, its start, starts run and solved,
 //                   time to first feasible and to best (from the hand-out of the scene's
 //                   first start); whether a time limit cut the search short;
 //   best/SCENE.json the full solution of the best start (core/model/solution.h).
@@ -27,6 +28,7 @@
 #include <cstdio>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -45,7 +47,10 @@ class SearchRecord {
  public:
   // Opens DIR/runs.jsonl: for writing, or, if `resumed`, for appending after reading the
   // lines of `seed` it holds. InputError if it cannot be opened.
-  SearchRecord(const SearchPlan& plan, const std::string& out_dir, std::uint64_t seed, bool resumed);
+  // `shared`: the search shares its incumbent (best.json's "mode": "shared", else
+  // "deterministic").
+  SearchRecord(const SearchPlan& plan, const std::string& out_dir, std::uint64_t seed, bool resumed,
+               bool shared);
   ~SearchRecord();
   SearchRecord(const SearchRecord&) = delete;
   SearchRecord& operator=(const SearchRecord&) = delete;
@@ -66,6 +71,7 @@ class SearchRecord {
   int cut_short() const { return cut_short_; }    // this run's outcomes that are not final
   int interrupted() const { return interrupted_; }  // of those, cut by an interrupt
   bool all_solved() const;  // every scene has a certified best
+  std::optional<double> best_T_f(int s) const;  // scene s's best certified T_f, if any
 
   // "scene T_f" for every scene with at most four, else for scene s (or, with s < 0, how
   // many scenes are solved): the progress lines' best.
@@ -88,6 +94,7 @@ class SearchRecord {
   const SearchPlan& plan_;
   std::string out_;
   std::uint64_t seed_ = 0;
+  bool shared_ = false;
   std::FILE* runs_ = nullptr;
   std::vector<Best> best_;
   std::map<std::pair<int, int>, StartOutcome> outcomes_;  // (scene, start): its latest outcome

@@ -29,7 +29,8 @@ bool certify_best(const Scene& scene, const RobotProblem& problem, const Elastic
 }  // namespace
 
 SceneSolve solve_scene(const Scene& scene, const Settings& settings, const StartSpec& start,
-                       double time_budget_s, const SolveCallback& on_solve) {
+                       double time_budget_s, const SolveCallback& on_solve,
+                       const IncumbentFunction& incumbent) {
   const auto t0 = std::chrono::steady_clock::now();
   check_model_size(scene, model_options(settings).adaptive, memory_limit(settings));
   IpoptSolver ipopt(ipopt_options(settings));
@@ -46,7 +47,7 @@ SceneSolve solve_scene(const Scene& scene, const Settings& settings, const Start
   RobotProblem& problem = *out.problem;
   out.result = reduce_objective(
       problem, solver, schedule, [&](double T) { return make_guess(problem, start, T); },
-      on_solve, make_perturbation(problem, start));
+      on_solve, make_perturbation(problem, start), incumbent);
   if (out.result.found &&
       !certify_best(scene, problem, start.elastic, out.result.best.z, out.info.certificate)) {
     out.result.found = false;  // never expected: the plan is a proof

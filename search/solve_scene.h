@@ -31,7 +31,8 @@ struct SceneSolve {
 // scene whose model would exceed model.memory_limit (core/model/model_size.h), before
 // building anything.
 SceneSolve solve_scene(const Scene& scene, const Settings& settings, const StartSpec& start,
-                       double time_budget_s = 0.0, const SolveCallback& on_solve = {});
+                       double time_budget_s = 0.0, const SolveCallback& on_solve = {},
+                       const IncumbentFunction& incumbent = {});
 // Start 0, no budget.
 SceneSolve solve_scene(const Scene& scene, const Settings& settings,
                        const SolveCallback& on_solve = {});

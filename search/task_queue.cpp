@@ -1,6 +1,7 @@
 #include "search/task_queue.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/util/numbers.h"
 
@@ -18,12 +19,16 @@ double cost(const Scene& s) {
 }  // namespace
 
 nlohmann::json Task::to_json() const {
-  return {{"scene", scene}, {"start", start}, {"budget", budget}, {"source", disco::to_string(source)}};
+  nlohmann::json j = {
+      {"scene", scene}, {"start", start}, {"budget", budget}, {"source", disco::to_string(source)}};
+  if (std::isfinite(incumbent)) j["incumbent"] = incumbent;  // JSON has no infinity
+  return j;
 }
 
 Task Task::from_json(const nlohmann::json& j) {
   return {j.at("scene").get<int>(), j.at("start").get<int>(), j.at("budget").get<double>(),
-          budget_source_from_string(j.at("source").get<std::string>())};
+          budget_source_from_string(j.at("source").get<std::string>()),
+          j.value("incumbent", kInf)};
 }
 
 TaskQueue::TaskQueue(const SearchPlan& plan, double time_limit,

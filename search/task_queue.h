@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/util/numbers.h"
 #include "search/run_start.h"
 #include "search/search_plan.h"
 
@@ -30,6 +31,7 @@ struct Task {
   int scene = 0, start = 0;  // indices into the plan's scenes, and the start index
   double budget = 0.0;       // s; 0 = none
   BudgetSource source = BudgetSource::kNone;  // the limit that set the budget
+  double incumbent = kInf;  // s: its scene's shared incumbent when handed out (+inf: none)
   nlohmann::json to_json() const;             // the message that hands it to a worker
   static Task from_json(const nlohmann::json& j);
 };

@@ -5,7 +5,10 @@
 // text (JSON made by the search); the transport only carries them:
 //   worker -> rank 0   kResult: a finished task's outcome (the body of the first one is "{}":
 //                      a worker's first request for work);
-//   rank 0 -> worker   kTask: a task to run; kStop: no more tasks, the worker returns.
+//                      kProgress: a new best within the task it runs (shared incumbent);
+//   rank 0 -> worker   kTask: a task to run; kStop: no more tasks, the worker returns;
+//                      kIncumbent: a better best of the scene of the task it runs.
+// Messages from one rank to another arrive in the order they were sent.
 // Workers call the transport only between solves (MUMPS inside Ipopt exports a fake MPI;
 // see mpi/CMakeLists.txt), and on rank 0 only the coordinator thread calls it while rank
 // 0's own worker solves (MPI_THREAD_SERIALIZED).
@@ -16,7 +19,7 @@
 
 namespace disco {
 
-enum class MessageKind { kResult, kTask, kStop };
+enum class MessageKind { kResult, kTask, kStop, kIncumbent, kProgress };
 
 struct Message {
   MessageKind kind = MessageKind::kResult;
@@ -34,7 +37,8 @@ class Transport {
   virtual int ranks_on_this_host() const = 0;
   // Sends `kind` with `body` to rank `to`.
   virtual void send(int to, MessageKind kind, const std::string& body) = 0;
-  // Rank 0: a worker's message, if one has arrived; never blocks.
+  // A message to this rank, if one has arrived (rank 0: from any worker; a worker: from
+  // rank 0); never blocks.
   virtual std::optional<Message> poll() = 0;
   // A worker: the next message from rank 0; blocks until it arrives.
   virtual Message receive() = 0;

@@ -3,10 +3,14 @@
 
   search_tests.py DISCO MPIEXEC BENCHMARK WORKDIR MODE
 MODE:
-  mpi2         mpirun -np 2: every start recorded once, both ranks worked, best.json
-               and best/<scene>.json consistent with runs.jsonl.
-  determinism  1 rank (no mpirun) and 2 ranks: the same set of runs (scene, start,
-               status, T_f bit for bit) and the same best T_f per scene.
+  mpi2         mpirun -np 2 (the shared incumbent, the default): every start recorded once,
+               both ranks worked, best.json and best/<scene>.json consistent with
+               runs.jsonl; starts knew other starts' points as their incumbent, and a
+               dominated start ended above it, certified.
+  determinism  --deterministic, 1 rank (no mpirun) and 2 ranks: the same set of runs (scene,
+               start, status, T_f bit for bit) and the same best T_f per scene; no incumbent.
+Every mode that compares runs bit for bit (determinism, resume, timelimit, interrupt,
+killrandom) runs --deterministic.
   resume       a 2-rank search killed after its first finished start, then --resume:
                every start exactly once in runs.jsonl, the same best as a clean run.
   timelimit    --time-limit 3 on one rank: hands out no start after 3 s, ends soon after
@@ -45,6 +49,11 @@ from script_checks import check, failures, finish
 DISCO, MPIEXEC, BENCH, WORK, MODE = sys.argv[1:6]
 MPI = [MPIEXEC, "-np", "2", "--allow-run-as-root", "--oversubscribe"]
 ENV = dict(os.environ, OMP_NUM_THREADS="1")
+
+
+# Runs compared bit for bit (across ranks, with a clean run after a resume) are deterministic:
+# each start alone. mpi2 runs the default, which shares the incumbent (configs/disco.yaml).
+DET = ["--deterministic"]
 
 
 def search(out, ranks, *extra):
@@ -131,19 +140,35 @@ if MODE == "mpi2":
     check(search(out, 2) == 0, "mpirun -np 2 disco search exits 0")
     check_consistent(out, "np2", timing=True)
     check(sorted({r["rank"] for r in runs(out)}) == [0, 1], "both ranks ran starts")
+    # The shared incumbent (the default): starts handed out after a certified point, or
+    # running when one was found, know their scene's best from other starts.
+    check(best(out)["mode"] == "shared", "best.json says the incumbent was shared")
+    told = [r for r in runs(out) if r["incumbent"] is not None]
+    check(len(told) >= 1, f"{len(told)} start(s) knew an incumbent")
+    for r in told:  # a point some start of the scene reached (its own included), none lower
+        points = [h[1] for x in runs(out) if x["scene"] == r["scene"] for h in x["history"]]
+        check(r["incumbent"] in points and r["incumbent"] >= min(points),
+              f"{r['scene']} start {r['start']}: its incumbent {r['incumbent']} is a start's point")
+    for r in runs(out):
+        if r["status"] == "dominated":
+            check(r["T_f"] is not None and r["T_f"] > r["incumbent"],
+                  f"{r['scene']} start {r['start']}: dominated above its incumbent, certified")
 elif MODE == "determinism":
     a, b = os.path.join(WORK, "det1"), os.path.join(WORK, "det2")
-    check(search(a, 1) == 0, "1-rank search exits 0")
-    check(search(b, 2) == 0, "2-rank search exits 0")
+    check(search(a, 1, *DET) == 0, "1-rank search exits 0")
+    check(search(b, 2, *DET) == 0, "2-rank search exits 0")
+    check(best(a)["mode"] == best(b)["mode"] == "deterministic", "best.json says deterministic")
+    check(all(r["incumbent"] is None and r["status"] != "dominated" for r in runs(a) + runs(b)),
+          "no start knew an incumbent")
     check(key_set(runs(a)) == key_set(runs(b)), "same runs (scene, start, status, T_f) for 1 and 2 ranks")
     ba, bb = best(a)["scenes"], best(b)["scenes"]
     check({k: (v["T_f"], v.get("start")) for k, v in ba.items()} ==
           {k: (v["T_f"], v.get("start")) for k, v in bb.items()}, "same best T_f and start per scene")
 elif MODE == "resume":
     clean, out = os.path.join(WORK, "clean"), os.path.join(WORK, "resume")
-    check(search(clean, 2) == 0, "clean 2-rank search exits 0")
+    check(search(clean, 2, *DET) == 0, "clean 2-rank search exits 0")
     shutil.rmtree(out, ignore_errors=True)
-    proc = subprocess.Popen(MPI + [DISCO, "search", BENCH, "--seed", "7", "--out", out],
+    proc = subprocess.Popen(MPI + [DISCO, "search", BENCH, "--seed", "7", "--out", out, *DET],
                             env=ENV, start_new_session=True)
     path = os.path.join(out, "runs.jsonl")
     deadline = time.time() + 120
@@ -152,7 +177,7 @@ elif MODE == "resume":
     kill_all(proc, out)
     before = len(runs(out))
     check(0 < before < best(clean)["starts_total"], f"killed after {before} finished start(s)")
-    resumed = subprocess.run(MPI + [DISCO, "search", BENCH, "--seed", "7", "--out", out, "--resume"],
+    resumed = subprocess.run(MPI + [DISCO, "search", BENCH, "--seed", "7", "--out", out, "--resume", *DET],
                              env=ENV)
     check(resumed.returncode == 0, "--resume exits 0")
     check_consistent(out, "resumed")
@@ -160,10 +185,10 @@ elif MODE == "resume":
           {k: v["T_f"] for k, v in best(clean)["scenes"].items()}, "resumed best equals the clean run's")
 elif MODE == "timelimit":
     clean, out = os.path.join(WORK, "clean"), os.path.join(WORK, "timelimit")
-    check(search(clean, 1) == 0, "clean 1-rank search exits 0")
+    check(search(clean, 1, *DET) == 0, "clean 1-rank search exits 0")
     shutil.rmtree(out, ignore_errors=True)
     t0 = time.time()
-    r = subprocess.run([DISCO, "search", BENCH, "--seed", "7", "--out", out, "--time-limit", "3"],
+    r = subprocess.run([DISCO, "search", BENCH, "--seed", "7", "--out", out, "--time-limit", "3", *DET],
                        env=ENV, capture_output=True, text=True)
     wall = time.time() - t0
     b = best(out)
@@ -184,7 +209,8 @@ elif MODE == "timelimit":
         points = [x["T_f"] for x in rs if x["scene"] == scene and x["T_f"] is not None]
         check(sb["T_f"] == (min(points) if points else None), f"{scene}: best of what ran, cut starts too")
     check("--resume runs them again" in r.stderr, "the last lines say how to finish the cut starts")
-    code = subprocess.run([DISCO, "search", BENCH, "--seed", "7", "--out", out, "--resume"], env=ENV).returncode
+    code = subprocess.run([DISCO, "search", BENCH, "--seed", "7", "--out", out, "--resume", *DET],
+                          env=ENV).returncode
     check(code == 0, "--resume without the limit exits 0")
     check_consistent(out, "resumed")
     check(key_set(latest(runs(out))) == key_set(runs(clean)), "resumed: the runs of the clean run, bit for bit")
@@ -332,7 +358,7 @@ elif MODE in ("interrupt", "killrandom"):
     config = [swap, "--set", "scene.steps=30", "--starts", "2"] if MODE == "interrupt" else [BENCH]
 
     def command(out, *extra):
-        return [DISCO, "search", *config, "--seed", "7", "--out", out, *extra]
+        return [DISCO, "search", *config, "--seed", "7", "--out", out, *DET, *extra]
 
     def same_as_clean(out, clean, label):
         check_consistent(out, label)

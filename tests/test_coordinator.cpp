@@ -4,6 +4,7 @@
 // Outcomes here are made up (the solves are tested elsewhere); only the bookkeeping is.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "core/model/scene_yaml.h"
+#include "core/util/numbers.h"
 #include "search/coordinator.h"
 #include "search/search_plan.h"
 #include "search/task_queue.h"
@@ -114,7 +116,7 @@ json outcome_message(const SearchPlan& plan, const Task& task, double T_f) {
 TEST(Coordinator, AStartsErrorIsRecordedAndTheSearchGoesOnToTheEnd) {
   const SearchPlan plan = load_search_plan({config("benchmarks/smoke.yaml")}, 0, 1, {});
   const std::string dir = fresh_dir("errors");
-  Coordinator c(plan, dir, 1, 0.0, false);
+  Coordinator c(plan, dir, 1, 0.0, false, false);
   // Worker 1 asks for work, then answers every task: errors for start 0 of each scene,
   // solved with T_f = 5 - start otherwise (start 2 the best), then gets "stop".
   Coordinator::Reply reply = c.on_result(1, "{}");
@@ -152,7 +154,7 @@ TEST(Coordinator, TiesGoToTheLowerStartAndAResumeSkipsWhatIsFinal) {
   const SearchPlan plan = load_search_plan({config("scenarios/one_robot_axis.yaml")}, 4, 1, {});
   const std::string dir = fresh_dir("ties");
   {
-    Coordinator c(plan, dir, 1, 0.0, false);
+    Coordinator c(plan, dir, 1, 0.0, false, false);
     for (int k : {3, 1}) {  // two starts, equal T_f, the higher index first
       const auto t = c.next(0);
       ASSERT_TRUE(t);
@@ -165,10 +167,92 @@ TEST(Coordinator, TiesGoToTheLowerStartAndAResumeSkipsWhatIsFinal) {
     EXPECT_EQ(best["scenes"]["one_robot_axis"]["start"], 1);
   }
   // Resumed: starts 1 and 3 are final; 0 and 2 are handed out, nothing else.
-  Coordinator again(plan, dir, 1, 0.0, true);
+  Coordinator again(plan, dir, 1, 0.0, true, false);
   std::vector<int> handed;
   while (const auto t = again.next(0)) handed.push_back(t->start);
   EXPECT_EQ(handed, (std::vector<int>{0, 2}));
+}
+
+// The shared incumbent (search/coordinator.h): tasks carry their scene's best, a better one
+// goes to every worker rank running that scene, once; rank 0 reads it directly.
+TEST(CoordinatorIncumbent, ABetterBestGoesToTheWorkersRunningItsSceneOnce) {
+  const SearchPlan plan = load_search_plan({config("benchmarks/smoke.yaml")}, 0, 1, {});
+  Coordinator c(plan, fresh_dir("incumbent"), 1, 0.0, false, true);
+  const Task t1 = Task::from_json(json::parse(c.on_result(1, "{}").body));  // larger scene first
+  const auto t0 = c.next(0);
+  const Task t2 = Task::from_json(json::parse(c.on_result(2, "{}").body));
+  ASSERT_TRUE(t0);
+  const int s = t1.scene;
+  ASSERT_EQ(t0->scene, s);
+  ASSERT_EQ(t2.scene, s);
+  EXPECT_EQ(t1.incumbent, kInf);  // nothing known yet
+  EXPECT_EQ(c.incumbent(s), kInf);
+  EXPECT_TRUE(c.take_outbox().empty());
+
+  c.progress(s, 3.0);  // rank 0's start found 3 s
+  EXPECT_EQ(c.incumbent(s), 3.0);
+  auto out = c.take_outbox();
+  ASSERT_EQ(out.size(), 2u);  // ranks 1 and 2, not rank 0
+  std::vector<int> to;
+  for (const auto& m : out) {
+    to.push_back(m.to);
+    EXPECT_EQ(m.kind, MessageKind::kIncumbent);
+    EXPECT_EQ(json::parse(m.body), (json{{"scene", s}, {"T_f", 3.0}}));
+  }
+  std::sort(to.begin(), to.end());
+  EXPECT_EQ(to, (std::vector<int>{1, 2}));
+  EXPECT_TRUE(c.take_outbox().empty()) << "each improvement is sent once";
+  c.on_progress(json{{"scene", s}, {"start", t1.start}, {"T_f", 4.0}}.dump());  // not better
+  EXPECT_EQ(c.incumbent(s), 3.0);
+  EXPECT_TRUE(c.take_outbox().empty());
+
+  // Worker 1 ends its start at 2.5: recorded, the incumbent; its next task carries it, and
+  // only worker 2 (still running scene s) is told.
+  const Task n1 = Task::from_json(json::parse(c.on_result(1, outcome_message(plan, t1, 2.5).dump()).body));
+  EXPECT_EQ(c.incumbent(s), 2.5);
+  if (n1.scene == s) {
+    EXPECT_EQ(n1.incumbent, 2.5);
+  }
+  out = c.take_outbox();
+  int to_2 = 0;
+  for (const auto& m : out) to_2 += m.to == 2;
+  EXPECT_EQ(to_2, 1);
+  for (const auto& m : out) EXPECT_TRUE(m.to == 2 || (m.to == 1 && n1.scene == s)) << m.to;
+}
+
+TEST(CoordinatorIncumbent, NotSharedThereIsNoneAndNoMessage) {
+  const SearchPlan plan = load_search_plan({config("benchmarks/smoke.yaml")}, 0, 1, {});
+  Coordinator c(plan, fresh_dir("deterministic"), 1, 0.0, false, false);
+  const Task t1 = Task::from_json(json::parse(c.on_result(1, "{}").body));
+  c.progress(t1.scene, 3.0);
+  EXPECT_EQ(c.incumbent(t1.scene), kInf);
+  EXPECT_TRUE(c.take_outbox().empty());
+  const Task n1 = Task::from_json(json::parse(c.on_result(1, outcome_message(plan, t1, 2.5).dump()).body));
+  EXPECT_EQ(n1.incumbent, kInf);
+  EXPECT_FALSE(json::parse(t1.to_json().dump()).contains("incumbent"));
+  c.finish();
+}
+
+TEST(CoordinatorIncumbent, BestJsonSaysWhichModeRanAndAResumeStartsFromTheEarlierBest) {
+  const SearchPlan plan = load_search_plan({config("scenarios/one_robot_axis.yaml")}, 3, 1, {});
+  const std::string dir = fresh_dir("mode");
+  {
+    Coordinator c(plan, dir, 1, 0.0, false, true);
+    const auto t = c.next(0);
+    ASSERT_TRUE(t);
+    c.record(StartOutcome::from_json(outcome_message(plan, *t, 3.5)["outcome"]), nullptr);
+    c.finish();
+    EXPECT_EQ(json::parse(std::ifstream(dir + "/best.json"))["mode"], "shared");
+  }
+  Coordinator again(plan, dir, 1, 0.0, true, true);
+  EXPECT_EQ(again.incumbent(0), 3.5);
+  const auto t = again.next(0);
+  ASSERT_TRUE(t);
+  EXPECT_EQ(t->incumbent, 3.5);
+  const std::string det_dir = fresh_dir("mode_det");
+  Coordinator det(plan, det_dir, 1, 0.0, false, false);
+  det.finish();
+  EXPECT_EQ(json::parse(std::ifstream(det_dir + "/best.json"))["mode"], "deterministic");
 }
 
 }  // namespace

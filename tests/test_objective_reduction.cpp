@@ -456,6 +456,79 @@ TEST(ObjectiveReduction, RelaxedWithoutPolishIsAnErrorNamingTheKey) {
   EXPECT_EQ(error_for({"elastic.formulation=relaxed"}), "");
 }
 
+// The shared incumbent (search/reduction_phases.h). An incumbent above every point the start
+// reaches changes nothing, bit for bit.
+TEST(ObjectiveReductionIncumbent, AnIncumbentAboveEveryPointChangesNothing) {
+  const Scene scene = scenario("two_robots_swap_avoid", {"steps=20"});
+  DefaultSolvers d;
+  d.schedule.jump_to_incumbent = true;
+  d.schedule.dominated_after = 1;
+  RobotProblem alone(scene), shared(scene);
+  const ReductionResult a = reduce_objective(alone, d.solver, d.schedule);
+  const ReductionResult b =
+      reduce_objective(shared, d.solver, d.schedule, {}, {}, {}, [] { return 1e9; });
+  ASSERT_TRUE(a.found);
+  EXPECT_EQ(a.iterations, b.iterations);
+  EXPECT_EQ(a.solves.size(), b.solves.size());
+  EXPECT_TRUE(same_bits(a.T_best, b.T_best)) << a.T_best << " vs " << b.T_best;
+  EXPECT_EQ(a.stop, b.stop);
+  EXPECT_EQ(b.incumbent, 1e9);
+}
+
+// A start whose best stays above another start's for dominated_after steps stops there,
+// dominated, with its certified best; until then it runs exactly as alone.
+TEST(ObjectiveReductionIncumbent, AStartThatStaysAboveTheIncumbentStopsDominated) {
+  const Scene scene = scenario("two_robots_swap_avoid", {"steps=20"});
+  DefaultSolvers d;
+  d.schedule.jump_to_incumbent = false;  // steps aim below its own best, as alone
+  d.schedule.dominated_after = 2;
+  RobotProblem alone(scene), shared(scene);
+  const ReductionResult a = reduce_objective(alone, d.solver, d.schedule);
+  const double unreachable = 0.5 * *alone.lower_bound();  // no start gets there
+  const ReductionResult b = reduce_objective(shared, d.solver, d.schedule, {}, {}, {},
+                                             [&] { return unreachable; });
+  print(b);
+  ASSERT_TRUE(b.found);
+  EXPECT_EQ(b.stop, StopReason::kDominated);
+  ASSERT_EQ(b.solves.size(), 3u) << "feasibility, then two steps";
+  ASSERT_GT(a.solves.size(), 3u) << "alone, the start takes more steps";
+  for (std::size_t k = 0; k < b.solves.size(); ++k)
+    EXPECT_TRUE(same_bits(a.solves[k].T_f, b.solves[k].T_f)) << "solve " << k;
+  EXPECT_GT(b.T_best, unreachable);
+  EXPECT_NE(stop_line(b.stop, d.schedule).find("dominated"), std::string::npos);
+  // As a start of the search: status dominated, its certified best and the incumbent recorded.
+  Settings settings = d.settings;
+  settings.apply_override("reduction.jump_to_incumbent=false");
+  settings.apply_override("reduction.dominated_after=2");
+  const StartSpec spec = make_start(scene, 1, 0, reduction_settings(settings), elastic_settings(settings));
+  const StartOutcome o = run_start(scene, settings, spec, 0.0, BudgetSource::kNone, nullptr, {},
+                                   [&] { return unreachable; });
+  EXPECT_EQ(o.status, StartStatus::kDominated);
+  EXPECT_TRUE(std::isfinite(o.T_f) && o.T_f > unreachable) << o.T_f;  // (the adaptive model)
+  EXPECT_EQ(o.incumbent, unreachable);
+  EXPECT_TRUE(std::isfinite(o.max_violation));
+}
+
+// Aiming below the incumbent (jump_to_incumbent): the first step after the feasible point
+// asks for (1 - rate) times the incumbent, not the start's own best.
+TEST(ObjectiveReductionIncumbent, WithJumpsTheFirstStepAimsBelowTheIncumbent) {
+  const Scene scene = scenario("two_robots_swap_avoid", {"steps=20"});
+  DefaultSolvers d;
+  d.schedule.jump_to_incumbent = true;
+  d.schedule.dominated_after = 3;
+  RobotProblem problem(scene);
+  const double incumbent = 2.4;  // below the feasible point (at 1.5 x the reference time)
+  const ReductionResult r = reduce_objective(problem, d.solver, d.schedule, {}, {}, {},
+                                             [&] { return incumbent; });
+  print(r);
+  ASSERT_TRUE(r.found);
+  ASSERT_GE(r.solves.size(), 2u);
+  ASSERT_GT(r.solves[0].T_f, incumbent);
+  EXPECT_DOUBLE_EQ(r.solves[1].bound, (1.0 - d.schedule.rate) * incumbent);
+  // It either got below the incumbent or stopped as dominated.
+  EXPECT_TRUE(r.T_best < incumbent || r.stop == StopReason::kDominated) << r.T_best;
+}
+
 TEST(ObjectiveReduction, AnUnknownMinimizerIsAnErrorNamingTheKey) {
   Settings settings = Settings::load(default_settings_path());
   settings.apply_override("reduction.minimize=fast");

@@ -313,5 +313,95 @@ TEST(ReductionPhases, PhasesHaveTheSolveLogsNames) {
   EXPECT_EQ(solve_kind(Phase::kFinalMinimize), SolveKind::kMinimize);
 }
 
+// The shared incumbent (search/reduction_phases.h): another start's best, 8 s, below this
+// start's 10 s.
+ReductionSettings sharing(int dominated_after = 3, bool jump = true) {
+  ReductionSettings r = schedule();
+  r.jump_to_incumbent = jump;
+  r.dominated_after = dominated_after;
+  return r;
+}
+PhaseOutcome under(PhaseOutcome o, double incumbent = 8.0) {
+  o.incumbent = incumbent;
+  return o;
+}
+
+TEST(ReductionPhasesIncumbent, AStepAimsBelowTheIncumbentWhenItIsLowerAndJumpsAreOn) {
+  EXPECT_DOUBLE_EQ(step_reference(under(outcome()), sharing()), 8.0);
+  EXPECT_DOUBLE_EQ(step_reference(under(outcome(), 12.0), sharing()), 10.0);  // own best lower
+  EXPECT_DOUBLE_EQ(step_reference(under(outcome()), sharing(3, false)), 10.0);
+  EXPECT_DOUBLE_EQ(step_reference(outcome(), sharing()), 10.0);  // none known (+inf)
+}
+
+TEST(ReductionPhasesIncumbent, ABestAboveTheIncumbentForDominatedAfterStepsInARowStops) {
+  ReductionState s = in(Phase::kMinimizingStep);
+  s = next_phase(s, under(improved()), sharing());  // 10 is still above 8: one
+  EXPECT_EQ(s.above_incumbent, 1);
+  EXPECT_EQ(s.phase, Phase::kMinimizingStep);
+  s = next_phase(s, under(no_gain()), sharing());  // two
+  EXPECT_EQ(s.above_incumbent, 2);
+  EXPECT_NE(s.phase, Phase::kDone);
+  s = next_phase(s, under(no_gain()), sharing());  // three: dominated, no final minimisation
+  EXPECT_EQ(s.phase, Phase::kDone);
+  EXPECT_EQ(s.stop, StopReason::kDominated);
+}
+
+TEST(ReductionPhasesIncumbent, ABestBelowTheIncumbentResetsTheCount) {
+  ReductionState s = in(Phase::kFixedStep);
+  s.above_incumbent = 2;
+  PhaseOutcome o = under(improved());
+  o.T_best = 7.5;  // below another start's 8: this start leads
+  s = next_phase(s, o, sharing());
+  EXPECT_EQ(s.above_incumbent, 0);
+  EXPECT_EQ(s.phase, Phase::kFixedStep);
+}
+
+TEST(ReductionPhasesIncumbent, FeasibilityAndThePerturbationAreNotStepsOfTheCount) {
+  ReductionState s = next_phase(begin_reduction(sharing(1)), under(improved()), sharing(1));
+  EXPECT_EQ(s.phase, Phase::kMinimizingStep);
+  EXPECT_EQ(s.above_incumbent, 0);
+}
+
+TEST(ReductionPhasesIncumbent, DominatedAfterZeroNeverStopsAStepForTheCount) {
+  ReductionState s = in(Phase::kFixedStep);
+  s.above_incumbent = 50;
+  s = next_phase(s, under(improved()), sharing(0));
+  EXPECT_EQ(s.phase, Phase::kFixedStep);
+}
+
+TEST(ReductionPhasesIncumbent, NoRateLeftToAimBelowTheIncumbentIsDominatedNotMinRate) {
+  // Aiming below 8 with the smallest horizon at 7.99: no rate >= 0.01 is allowed.
+  PhaseOutcome o = under(no_gain());
+  o.smallest = 7.99;
+  const ReductionState s = next_phase(in(Phase::kFixedStep, 0.05), o, sharing(0));
+  // (a failed first fixed step goes to the early minimisation, which does not admit)
+  EXPECT_EQ(s.phase, Phase::kEarlyMinimize);
+  const ReductionState t = next_phase(in(Phase::kMinimizingStep, 0.05), o, sharing(0));
+  EXPECT_EQ(t.phase, Phase::kDone);
+  EXPECT_EQ(t.stop, StopReason::kDominated);
+  // The same without jumps aims below its own 10 s: a rate is left.
+  const ReductionState u = next_phase(in(Phase::kMinimizingStep, 0.05), o, sharing(0, false));
+  EXPECT_EQ(u.phase, Phase::kMinimizingStep);
+  EXPECT_DOUBLE_EQ(step_bound(u, step_reference(o, sharing(0, false))), 10.0 * (1 - 0.025));
+}
+
+TEST(ReductionPhasesIncumbent, WithoutAnIncumbentEveryTransitionIsTheSame) {
+  // An infinite incumbent (none known; --deterministic) changes no transition.
+  for (Phase p : {Phase::kMinimizingStep, Phase::kFixedStep, Phase::kProbe, Phase::kEarlyMinimize})
+    for (const PhaseOutcome& o : {improved(), improved(true), no_gain(), failed()}) {
+      const ReductionState a = next_phase(in(p), o, schedule());
+      const ReductionState b = next_phase(in(p), o, sharing(1));
+      EXPECT_EQ(a.phase, b.phase);
+      EXPECT_EQ(a.stop, b.stop);
+      EXPECT_DOUBLE_EQ(a.rate, b.rate);
+    }
+}
+
+TEST(ReductionPhasesIncumbent, TheStopLineNamesTheSettings) {
+  const std::string line = stop_line(StopReason::kDominated, sharing());
+  EXPECT_NE(line.find("dominated"), std::string::npos);
+  EXPECT_NE(line.find("reduction.dominated_after = 3"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace disco

@@ -182,7 +182,7 @@ TEST(RunStart, AnInterruptStopsTheStartAtOnceAndItIsRecordedAsInterrupted) {
 TEST(RunStart, StatusNamesRoundTripAndAnUnknownNameIsRefused) {
   for (StartStatus s : {StartStatus::kSolved, StartStatus::kInfeasible, StartStatus::kFailed,
                         StartStatus::kElasticNotTight, StartStatus::kError, StartStatus::kTimeLimit,
-                        StartStatus::kInterrupted})
+                        StartStatus::kInterrupted, StartStatus::kDominated})
     EXPECT_EQ(start_status_from_string(to_string(s)), s);
   for (BudgetSource b : {BudgetSource::kNone, BudgetSource::kStart, BudgetSource::kScene,
                          BudgetSource::kSearch})

@@ -42,6 +42,11 @@ struct ReductionSettings {
   int minimize_iterations = 0;  // kElastic: cap on the early minimisation (step 3); 0 = none
   int flip_rounds = 0;      // kBranch: at most this many rounds of flips per branch descent
   double time_limit = 0.0;  // s; 0 = none
+  // The shared incumbent (search/reduction_phases.h): steps aim below (1 - r) min(T_best,
+  // incumbent); a start whose best stays above the incumbent for dominated_after steps in a
+  // row stops, dominated (0 = never).
+  bool jump_to_incumbent = false;
+  int dominated_after = 0;
 };
 
 std::vector<IpoptOption> ipopt_options(const Settings& settings);    // the `ipopt:` section
@@ -52,6 +57,10 @@ ModelOptions model_options(const Settings& settings);                // the `mod
 // before a model is built. Anything else is an InputError naming the file, line and key.
 MemoryLimit memory_limit(const Settings& settings);
 ReductionSettings reduction_settings(const Settings& settings);      // `feasibility:` + `reduction:`
+// search.share_incumbent (the `search:` section): whether a search's starts share the best
+// T_f of their scene (search/coordinator.h); `disco search --deterministic` sets it false.
+inline constexpr const char* kShareIncumbentKey = "search.share_incumbent";
+bool share_incumbent(const Settings& settings);
 
 // The value of the text key `key` among `choices` (name, value); any other text is an
 // InputError naming the key and listing the names.

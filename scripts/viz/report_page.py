@@ -10,6 +10,8 @@ page(report) takes the plain data gathered by scripts/report:
 """
 import html
 
+from viz.search_plots import has_final_point
+
 CSS = """
 :root { --fg: #1d232a; --muted: #5b6570; --line: #d9dee3; --head: #f3f5f7; --best: #fff4c2;
         --bad: #a4281e; --ok: #1f6f3a; }
@@ -84,7 +86,7 @@ def certificate_text(c):
 
 
 def status_cell(status):
-    cls = {"solved": "status-solved", "not run": "muted"}.get(status, "status-other")
+    cls = {"solved": "status-solved", "dominated": "muted", "not run": "muted"}.get(status, "status-other")
     return f'<span class="{cls}">{esc(status)}</span>'
 
 
@@ -176,7 +178,7 @@ def start_table(s):
     if not runs:
         return '<p class="muted">No runs.jsonl lines for this scene.</p>'
     best_T = s["best"].get("T_f")
-    ordered = sorted(runs, key=lambda r: (r["status"] != "solved", r.get("T_f") or 0.0,
+    ordered = sorted(runs, key=lambda r: (not has_final_point(r), r.get("T_f") or 0.0,
                                           r["start"]))
     head = ("<tr><th class=num>start</th><th>guess</th><th>schedule</th><th>status</th>"
             "<th class=num>T_f [s]</th><th class=num>vs best</th>"
@@ -185,7 +187,7 @@ def start_table(s):
             "<th class=num>rank</th><th class=num>certificate</th></tr>")
     rows = []
     for r in ordered:
-        solved = r["status"] == "solved" and r.get("T_f") is not None
+        solved = has_final_point(r)
         best = r["start"] == s["best"].get("start")
         vs = ("best" if best else f"{100.0 * (r['T_f'] - best_T) / best_T:+.2f} %"
               if solved and best_T else "–")
@@ -263,6 +265,10 @@ def page(report):
         meta.append(f"seed {search.get('seed')}, {search.get('starts_finished')} of "
                     f"{search.get('starts_total')} starts finished on {report['ranks']} rank(s) "
                     f"in {search.get('elapsed_s', 0.0):.1f} s")
+        if search.get("mode"):  # written since the shared incumbent (search/README.md)
+            meta.append({"shared": "starts shared the incumbent",
+                         "deterministic": "deterministic (each start alone)"}.get(
+                             search["mode"], esc(search["mode"])))
         if search.get("time_limit_reached"):
             meta.append("<b>the time limit stopped the search</b>")
     toc = " ".join(f'<a href="#{anchor(s["name"])}">{esc(s["name"])}</a>'

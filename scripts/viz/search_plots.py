@@ -47,6 +47,15 @@ def _reference_line(ax, scene):
                    label=f"reference {scene['reference_time']:.4f} s")
 
 
+# A start that ran to its own end with a certified point: solved, or dominated (stopped when
+# it could not get below the best another start had found; search/reduction_phases.h).
+FINAL_POINT = ("solved", "dominated")
+
+
+def has_final_point(run):
+    return run["status"] in FINAL_POINT and run.get("T_f") is not None
+
+
 def start_curve(run, scene_start):
     """[(search time since the scene's first hand-out, T_f)] of a solved start's new bests,
     and its end time. Lines written before `history` existed give their best only."""
@@ -64,7 +73,7 @@ def plot_progress(runs, scene, out):
     timed = [r for r in runs if isinstance(r.get("finished_s"), (int, float))
              and isinstance(r.get("seconds"), (int, float)) and not r.get("_resumed")]
     for r in sorted(timed, key=lambda r: r["start"]):
-        if r["status"] != "solved" or r.get("T_f") is None:
+        if not has_final_point(r):
             failed.append(r["finished_s"] - scene_start)
             continue
         pts, end = start_curve(r, scene_start)
@@ -125,7 +134,7 @@ def plot_spread(runs, scene, out):
     for x, k in enumerate(kinds):
         mine = sorted((r for r in runs if (r.get("guess") or "unknown") == k),
                       key=lambda r: r["start"])
-        solved = [r for r in mine if r["status"] == "solved" and r.get("T_f") is not None]
+        solved = [r for r in mine if has_final_point(r)]
         n = len(solved)
         for m, r in enumerate(solved):
             dx = 0.0 if n == 1 else 0.3 * (2.0 * m / (n - 1) - 1.0)  # spread evenly, no overlap
