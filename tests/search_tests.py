@@ -7,6 +7,10 @@ MODE:
                both ranks worked, best.json and best/<scene>.json consistent with
                runs.jsonl; starts knew other starts' points as their incumbent, and a
                dominated start ended above it, certified.
+  mpi8         mpirun -np 8 --oversubscribe, sharing the incumbent, on the smoke scenes at 10
+               steps with 12 starts each: every start recorded once, all 8 ranks worked and
+               none stopped working while tasks remained, incumbent messages reached workers
+               (their --verbose log line).
   determinism  --deterministic, 1 rank (no mpirun) and 2 ranks: the same set of runs (scene,
                start, status, T_f bit for bit) and the same best T_f per scene; no incumbent.
 Every mode that compares runs bit for bit (determinism, resume, timelimit, interrupt,
@@ -153,6 +157,30 @@ if MODE == "mpi2":
         if r["status"] == "dominated":
             check(r["T_f"] is not None and r["T_f"] > r["incumbent"],
                   f"{r['scene']} start {r['start']}: dominated above its incumbent, certified")
+elif MODE == "mpi8":
+    out = os.path.join(WORK, "mpi8")
+    shutil.rmtree(out, ignore_errors=True)
+    mpi8 = [MPIEXEC, "-np", "8", "--allow-run-as-root", "--oversubscribe"]
+    r = subprocess.run(mpi8 + [DISCO, "search", BENCH, "--seed", "7", "--starts", "12", "--set",
+                               "scene.steps=10", "--out", out, "--verbose"],
+                       env=ENV, capture_output=True, text=True)
+    check(r.returncode == 0, f"mpirun -np 8 disco search exits 0 (got {r.returncode}; {r.stderr[-300:]!r})")
+    check_consistent(out, "np8")
+    rs = runs(out)
+    check(len(rs) == 24, f"24 starts recorded ({len(rs)})")
+    check(sorted({x["rank"] for x in rs}) == list(range(8)), "all 8 ranks ran starts")
+    # No rank stopped working while tasks remained: each rank's last start ended after the last
+    # hand-out (approximately: a start's hand-out is its recording time less its run time).
+    last_handout = max(x["finished_s"] - x["seconds"] for x in rs)
+    for k in range(8):
+        mine = [x for x in rs if x["rank"] == k]
+        if mine:
+            end = max(x["finished_s"] for x in mine)
+            check(end >= last_handout - 1.0,
+                  f"rank {k} worked until the last hand-out ({end:.2f} s >= {last_handout:.2f} s - 1 s)")
+    told = re.findall(r"rank ([1-7]): incumbent of \S+ now [0-9.]+ \(from rank 0\)", r.stderr)
+    check(len(told) >= 1, f"incumbent messages reached workers ({len(told)}, ranks {sorted(set(told))})")
+    check(best(out)["mode"] == "shared", "best.json says shared")
 elif MODE == "determinism":
     a, b = os.path.join(WORK, "det1"), os.path.join(WORK, "det2")
     check(search(a, 1, *DET) == 0, "1-rank search exits 0")
