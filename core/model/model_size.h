@@ -4,7 +4,7 @@
 //
 // Counts. Every constraint family states what holds at one step (core/model/layout.h), so
 // a model with every pair at every step (the full model, and the adaptive model with an
-// unbounded horizon: core/model/adaptive.h) has counts affine in N_t from N_t = 2 on. The
+// unbounded horizon: core/model/model_plan.h) has counts affine in N_t from N_t = 2 on. The
 // counts of the two models at N_t = 2 and 3 (a few hundred unknowns each, built in well under
 // a millisecond) give them exactly at any N_t, in O(robots + pairs), whatever N_t is.
 // Counted: the elastic NLP handed to Ipopt (core/elastic/elastic_nlp.h, lumped: one slack
