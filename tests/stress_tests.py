@@ -113,7 +113,7 @@ def check_search_nan():
                                  for x in over),
           f"both overflow starts recorded as failed, naming Invalid_Number_Detected "
           f"({[(x['status'], x['detail']) for x in over]})")
-    # (with the shared incumbent a later start may stop dominated: certified, above start 0's best)
+    # (sharing the incumbent, a later start may stop dominated: certified, above start 0's best)
     check(len(mu0) == 2 and all(x["status"] in ("solved", "dominated") and x["T_f"] is not None
                                 for x in mu0), "the search went on: mu_0 solved")
     with open(os.path.join(out, "best.json")) as f:
