@@ -1,9 +1,10 @@
 // disco — the command-line tool.
 //
-//   disco solve SCENE.yaml [--out DIR] [--start N [--seed S]] [--threads N] [--settings FILE]
-//               [--set KEY=VALUE ...] [--model-only] [--quiet | --verbose]
+//   disco solve SCENE.yaml [--out DIR] [--start N [--seed S]] [--guess FILE] [--threads N]
+//               [--settings FILE] [--set KEY=VALUE ...] [--model-only] [--quiet | --verbose]
 //   disco search CONFIG... [--starts N] [--seed S] [--time-limit SEC] [--out DIR]
-//                [--resume | --force] [--deterministic] [--threads N] [--settings FILE]
+//                [--resume | --force] [--deterministic] [--guess FILE ...] [--threads N]
+//                [--settings FILE]
 //                [--set KEY=VALUE ...] [--quiet | --verbose]            (search/run_search.h)
 //   disco --version
 //
@@ -58,6 +59,7 @@
 #include "search/run_search.h"
 #include "search/solve_scene.h"
 #include "search/start.h"
+#include "search/trajectory.h"
 
 namespace {
 
@@ -173,13 +175,14 @@ struct SolveOptions {
   int start = 0;
   std::uint64_t seed = 1;
   std::vector<std::string> sets;
+  std::string guess;  // --guess FILE
   bool model_only = false;
 };
 
 // disco solve, once the scene passed the size check.
 int solve_checked(const SolveOptions& o, const Settings& settings, const Scene& scene,
                   const std::vector<std::string>& scene_sets, const std::string& out_dir,
-                  const ModelSizeEstimate& estimate) {
+                  const ModelSizeEstimate& estimate, const Trajectory& guess) {
   {
     RobotProblem preview(scene, model_options(settings));
     const double T_max = feasibility_horizon(preview, reduction_settings(settings));
@@ -208,8 +211,14 @@ int solve_checked(const SolveOptions& o, const Settings& settings, const Scene& 
   IpoptSolver check(ipopt_options(settings));
   if (o.model_only) return 0;
   std::filesystem::create_directories(out_dir);
-  const StartSpec start =
+  StartSpec start =
       make_start(scene, o.seed, o.start, reduction_settings(settings), elastic_settings(settings));
+  if (!guess.empty()) {
+    start = with_guess(start, guess);
+    spdlog::info("guess: {} (T_f {:.6f} s), resampled to N_t = {}; first horizon {:.6f} s",
+                 o.guess, start.given.seconds, scene.steps,
+                 (1.0 + start.schedule.guess_slack) * start.given.seconds);
+  }
   if (o.start != 0) {
     spdlog::info("seed {}, {}", o.seed, start.describe());
   } else {
@@ -224,7 +233,8 @@ int solve_checked(const SolveOptions& o, const Settings& settings, const Scene& 
   spdlog::info("  {}", stop_line(run.result.stop, start.schedule));
   const std::string path = out_dir + "/solution.json";
   json doc = solution_json(*run.problem, run.z, run.info);
-  doc["provenance"] = provenance_json({"solve", o.scene, scene_sets, o.sets, o.seed, o.start}, settings);
+  doc["provenance"] =
+      provenance_json({"solve", o.scene, scene_sets, o.sets, o.seed, o.start, o.guess}, settings);
   write_json_file(path, doc);
   if (interrupt_requested()) {
     spdlog::warn("interrupted: the solve stopped early; {} holds its best point so far{}", path,
@@ -255,13 +265,14 @@ int run_solve(const SolveOptions& o) {
   Settings settings = Settings::load(o.settings);
   for (const auto& s : settings_sets) settings.apply_override(s);
   const Scene scene = load_scene(o.scene, scene_sets);
+  const Trajectory guess = o.guess.empty() ? Trajectory{} : read_guess_file(o.guess, scene);
   set_threads(o.threads);
   const std::string out_dir = o.out.empty() ? "out/" + scene.name : o.out;
   // Refuse a model too big for model.memory_limit before building any (--model-only too).
   const bool adaptive = model_options(settings).adaptive;
   const ModelSizeEstimate estimate = check_model_size(scene, adaptive, memory_limit(settings));
   try {
-    return solve_checked(o, settings, scene, scene_sets, out_dir, estimate);
+    return solve_checked(o, settings, scene, scene_sets, out_dir, estimate, guess);
   } catch (const std::bad_alloc&) {
     spdlog::error("error: {}", out_of_memory_message("solving " + o.scene, scene, adaptive));
     return 1;
@@ -290,6 +301,10 @@ int main(int argc, char** argv) {
                   "log of the start that gave a search's best")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--seed", solve.seed, "Seed of the start generator (with --start; as for search)");
+  cmd->add_option("--guess", solve.guess,
+                  "Start from this trajectory: a solution.json or best/SCENE.json of the same "
+                  "robots (any N_t; resampled to the scene's, first solved at "
+                  "(1 + feasibility.guess_slack) times its T_f)");
   cmd->add_flag("--model-only", solve.model_only,
                 "Print the model's size (at start 0's feasibility horizon) and exit without solving");
   cmd->add_option("--threads", solve.threads, "OpenMP threads (default: OMP_NUM_THREADS, else 1)")
@@ -326,6 +341,12 @@ int main(int argc, char** argv) {
   scmd->add_flag("--deterministic", search.deterministic,
                  "Each start runs alone (search.share_incumbent=false): the same runs and best "
                  "for any number of ranks, and on --resume");
+  scmd->add_option("--guess", search.guesses,
+                   "A solution file (solution.json, best/SCENE.json) for start 0 of the scene it "
+                   "names (of the only scene, whatever its name); repeat for more scenes")
+      ->expected(1)
+      ->allow_extra_args(false)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   scmd->add_option("--threads", search_threads, "OpenMP threads per rank (default 1)")
       ->check(CLI::PositiveNumber);
   scmd->add_option("--settings", search.settings, "Solver settings file")->capture_default_str();

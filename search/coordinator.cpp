@@ -40,12 +40,13 @@ std::string clock_text(double s) {
 }  // namespace
 
 Coordinator::Coordinator(const SearchPlan& plan, const std::string& out_dir, std::uint64_t seed,
-                         double time_limit, bool resumed, bool share_incumbent)
+                         double time_limit, bool resumed, bool share_incumbent,
+                         const GuessClassFunction& guess_class)
     : plan_(plan),
       share_(share_incumbent),
       t0_(std::chrono::steady_clock::now()),
       record_(plan, out_dir, seed, resumed, share_incumbent),
-      queue_(plan, time_limit, record_.done()),
+      queue_(plan, time_limit, record_.done(), guess_class),
       incumbent_(plan.scenes.size(), kInf),
       improved_(plan.scenes.size(), false) {
   for (std::size_t s = 0; s < plan.scenes.size(); ++s)  // a resumed run's bests

@@ -44,8 +44,10 @@ class Coordinator {
   // The output directory `out_dir` is prepared (search/run_manifest.h); `resumed`: it
   // holds an earlier run of the same command, whose final starts are skipped.
   // `share_incumbent`: search.share_incumbent (false: the deterministic mode).
+  // `guess_class`: the hand-out order defers starts of classes already tried (TaskQueue).
   Coordinator(const SearchPlan& plan, const std::string& out_dir, std::uint64_t seed,
-              double time_limit, bool resumed, bool share_incumbent);
+              double time_limit, bool resumed, bool share_incumbent,
+              const GuessClassFunction& guess_class = {});
 
   // The next task for `rank`, or none: all handed out, a time limit, or an interrupt.
   std::optional<Task> next(int rank);

@@ -14,6 +14,7 @@
 #include "core/model/lower_bound.h"
 #include "core/util/check.h"
 #include "core/util/numbers.h"
+#include "search/trajectory.h"
 
 namespace disco {
 namespace {
@@ -177,11 +178,17 @@ Paths build_paths(const Scene& scene, Warp&& warp, Offset&& offset) {
 }  // namespace
 
 Paths detour_paths(const Scene& scene, int side) {
+  return detour_paths(scene, side > 0 ? 0u : ~std::uint64_t{0});
+}
+
+Paths detour_paths(const Scene& scene, std::uint64_t pattern) {
   const std::vector<Conflict> cs = conflicts(scene);
   auto straight = [](int, double tau) { return tau; };
   auto offset = [&](int robot, double tau, double& ox, double& oy) {
-    for (const Conflict& c : cs) {
+    for (std::size_t k = 0; k < cs.size(); ++k) {
+      const Conflict& c = cs[k];
       if (robot != c.i && robot != c.j) continue;
+      const double side = k < 64 && (pattern >> k & 1u) ? -1.0 : 1.0;
       // Peak at the closest approach, kept away from the ends.
       const double peak = std::clamp(inverse_smoothstep(c.w), 0.15, 0.85);
       const double a = side * c.clearance * bump(tau, peak) * (robot == c.i ? 1.0 : -1.0);
@@ -284,32 +291,20 @@ Paths perturbed_paths(const Scene& scene, const StartSpec& start) {
 
 Paths retimed_paths(const RobotProblem& problem, const StartSpec& start, const Vector& z) {
   const Scene& scene = problem.scene();  // SI
-  const Layout& lay = problem.layout();
   const int N = scene.steps, nr = static_cast<int>(scene.robots.size());
-  const double L = problem.units().length;
   const double p = start.perturbation;
   std::mt19937_64 g = start_generator(start.seed, scene.name, start.index, 1);
-  Paths paths(nr, std::vector<Pose>(N + 1));
+  const Paths old = paths_of(problem, z);  // the feasible paths, SI
+  Paths paths = old;
   for (int i = 0; i < nr; ++i) {
     std::array<double, 2> c;
     for (double& a : c) a = uniform(g, -1.0, 1.0);
-    // The feasible path, SI.
-    std::vector<Pose> old(N + 1);
-    old[0] = {scene.robots[i].start[kX], scene.robots[i].start[kY], scene.robots[i].start[kPhi]};
-    for (int t = 1; t <= N; ++t)
-      old[t] = {lay.state(i, t, kX).value(z) * L, lay.state(i, t, kY).value(z) * L,
-                lay.state(i, t, kPhi).value(z)};
-    paths[i][0] = old[0];
     for (int t = 1; t < N; ++t) {
       const double tau = static_cast<double>(t) / N;
       double s = tau;
       for (int k = 0; k < 2; ++k) s += p * c[k] * std::sin((k + 1) * kPi * tau) / ((k + 1) * kPi);
-      const double u = N * std::clamp(s, 0.0, 1.0);
-      const int k = std::min(N - 1, static_cast<int>(std::floor(u)));
-      const double f = u - k;
-      for (int d = 0; d < 3; ++d) paths[i][t][d] = old[k][d] + f * (old[k + 1][d] - old[k][d]);
+      paths[i][t] = pose_at(old[i], N * std::clamp(s, 0.0, 1.0));
     }
-    paths[i][N] = old[N];
   }
   return paths;
 }
@@ -364,12 +359,27 @@ Vector make_guess(const RobotProblem& problem, const StartSpec& start, double se
     case GuessKind::kPerturbed:
       return complete_guess(problem, perturbed_paths(problem.scene(), start), seconds);
     case GuessKind::kDetour:
-      return complete_guess(problem, detour_paths(problem.scene(), start.detour_side), seconds);
+      return complete_guess(problem, detour_paths(problem.scene(), start.detour_pattern), seconds);
     case GuessKind::kPerturbedFeasible: return smoothstep_guess(problem, seconds);
     case GuessKind::kYield:
       return complete_guess(problem, yield_paths(problem.scene(), start), seconds);
+    case GuessKind::kGiven: return complete_guess(problem, start.given.paths, seconds);
   }
   return smoothstep_guess(problem, seconds);
+}
+
+Paths guess_paths(const Scene& scene, const StartSpec& start) {
+  switch (start.guess) {
+    case GuessKind::kPerturbed: return perturbed_paths(scene, start);
+    case GuessKind::kDetour: return detour_paths(scene, start.detour_pattern);
+    case GuessKind::kYield: return yield_paths(scene, start);
+    case GuessKind::kGiven: return start.given.paths;
+    case GuessKind::kStraight:
+    case GuessKind::kPerturbedFeasible: break;
+  }
+  auto straight = [](int, double tau) { return tau; };
+  auto no_offset = [](int, double, double&, double&) {};
+  return build_paths(scene, straight, no_offset);
 }
 
 Perturbation perturb_feasible(const RobotProblem& problem, const StartSpec& start,

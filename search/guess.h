@@ -16,7 +16,9 @@
 //   perturbed           perturbed_paths(): random lateral and timing perturbations;
 //   perturbed feasible  the smoothstep guess, then (step 1b of
 //                       search/objective_reduction.h) the feasible point's own paths
-//                       re-timed (retimed_paths) and re-solved.
+//                       re-timed (retimed_paths) and re-solved;
+//   given               a trajectory's paths (search/trajectory.h: `--guess FILE`, or the
+//                       coarse answer of a coarse-to-fine start), at any horizon.
 //
 // Paths. Every offset added here vanishes at t = 0 and t = N, and the point at t = N is
 // the target pose exactly. A robot with force_dims 1 cannot push sideways: its offsets
@@ -26,13 +28,14 @@
 // timing, so p_j - p_i = d0 + w (dN - d0) is linear in w), the centre distance drops
 // below the pair's clearance R_i + R_j (+ d_s for an avoid pair; core/model/gap.h).
 //
-// Detour. For every conflicting pair, with D = dN - d0 (the relative motion of j seen
+// Detour. For every conflicting pair (each on its own side, below), with D = dN - d0 (the relative motion of j seen
 // from i) and n = D turned +90 degrees (unit): i is moved by +side B n b(tau), j by -side
 // B n b(tau), with B the clearance and b a smooth bump, 0 at tau = 0 and 1, peaking
 // (b = 1) at the straight paths' closest approach. So the lateral offset (p_j - p_i) . n
 // changes by -2 side B at the peak: side +1 (left) puts each robot on the other's left
 // (relative to their relative motion), side -1 (right) on its right. The offsets of the
-// two sides are exact mirror images; pairs' offsets add up.
+// two sides are exact mirror images; pairs' offsets add up. Each pair takes its own side
+// from the start's pattern (search/start.h: all left, all right, then the mixed ones).
 //
 // Perturbed. Per robot: a lateral offset p L l(tau) along its path's normal (L = path
 // length; a robot that does not move gets p R in x and in y independently, R its
@@ -91,9 +94,6 @@
 
 namespace disco {
 
-// paths[i][t]: the pose of robot i at state t = 0..N, SI units (metres, radians).
-using Paths = std::vector<std::vector<Pose>>;
-
 // The point of `problem` at horizon `seconds` that follows `paths` (one per robot, N + 1
 // poses each; entry t = 0 is not used: the start is a constant of the model and is taken
 // exactly): velocities from the kinematics (core/model/kinematics.h), floor friction on
@@ -123,10 +123,19 @@ std::vector<Conflict> conflicts(const Scene& scene);
 // The guesses, as described above.
 Vector smoothstep_guess(const RobotProblem& problem, double seconds);
 Vector straight_guess(const RobotProblem& problem, double seconds);
+// Side +1 (left) or -1 (right) for every conflicting pair.
 Paths detour_paths(const Scene& scene, int side);
+// Pair k of conflicts(scene) on the right where bit k of `pattern` is set, else on the left
+// (pairs beyond 64 on the left).
+Paths detour_paths(const Scene& scene, std::uint64_t pattern);
 Paths yield_paths(const Scene& scene, const StartSpec& start);
 Paths perturbed_paths(const Scene& scene, const StartSpec& start);
 Paths retimed_paths(const RobotProblem& problem, const StartSpec& start, const Vector& feasible);
+
+// The paths of `start`'s guess, at the scene level (no model): the straight paths on the
+// smoothstep timing for kStraight and kPerturbedFeasible (a weak robot's own timing aside),
+// the kind's own paths otherwise. search/homotopy.h classifies them.
+Paths guess_paths(const Scene& scene, const StartSpec& start);
 
 // The initial guess of `start` for horizon `seconds`.
 Vector make_guess(const RobotProblem& problem, const StartSpec& start, double seconds);

@@ -166,6 +166,7 @@ struct Reduction {
 
 
 double feasibility_horizon(const RobotProblem& problem, const ReductionSettings& cfg) {
+  if (cfg.horizon > 0.0) return cfg.horizon;  // a start from a trajectory
   const auto scale = problem.reference_time();
   return scale ? std::max(cfg.horizon_min, cfg.horizon_factor * *scale) : cfg.horizon_min;
 }
@@ -183,7 +184,7 @@ std::string to_string(SolveKind kind) {
 }
 
 std::string solve_log_header() {
-  return fmt::format("{:>3} {:<11} {:>10} {:>10} {:<17} {:>9} {:>9} {:>4} {:>5} {:>7}", "#",
+  return fmt::format("{:>3} {:<18} {:>10} {:>10} {:<17} {:>9} {:>9} {:>4} {:>5} {:>7}", "#",
                      "phase", "bound[s]", "T_f[s]", "ended", "compl", "viol", "nlp", "iter",
                      "sec");
 }
@@ -207,8 +208,8 @@ std::string solve_outcome_words(MpccStatus status, NlpOutcome outcome) {
 std::string solve_log_line(int number, const SolveRecord& r) {
   const std::string words = solve_outcome_words(r.status, r.outcome);
   return fmt::format(
-      "{:>3} {:<11} {:>10.5f} {:>10.5f} {:<17} {:>9.1e} {:>9.1e} {:>4} {:>5} {:>7.3f}{}", number,
-      to_string(r.kind), r.bound, r.T_f, words, r.certificate.max_complementarity,
+      "{:>3} {:<18} {:>10.5f} {:>10.5f} {:<17} {:>9.1e} {:>9.1e} {:>4} {:>5} {:>7.3f}{}", number,
+      (r.coarse ? "coarse " : "") + to_string(r.kind), r.bound, r.T_f, words, r.certificate.max_complementarity,
       r.certificate.max_violation, r.nlp_solves, r.iterations, r.seconds,
       r.improved ? std::string("  *")
       : words == "failed" || words == "invalid number"

@@ -2,7 +2,8 @@
 // paragraph), from one start.
 //
 //   1. Feasibility: fix T_f = max(horizon_min, horizon_factor * reference
-//      time: the slowest robot's straight move alone) and solve
+//      time: the slowest robot's straight move alone), or the start's own horizon
+//      (ReductionSettings::horizon, a start from a trajectory), and solve
 //      the elastic MPCC from the guess (the objective is then constant). If it
 //      is not solved, double T_f and try again (three times at most). This
 //      horizon is the largest any later step asks for, so each attempt first
@@ -106,13 +107,16 @@ struct SolveRecord {
   int nlp_solves = 0, iterations = 0;
   double seconds = 0.0;
   bool improved = false;  // became the new best
+  // A solve of the coarse stage of a coarse-to-fine start (search/solve_scene.h): of the
+  // scene at fewer steps, so never a best of the start (improved stays false).
+  bool coarse = false;
 };
 
 // The solve log of `disco solve` (and of every start under `disco search
 // --verbose`): a header, then one line per elastic-mode solve, numbered from 1:
-// phase, T_f bound and reached, how it ended in words (solve_outcome_words), certificate,
-// Ipopt solves, iterations and seconds, and "*" for a new best (for a real failure, Ipopt's
-// status in parentheses). The loop's last line, stop_line() (search/reduction_phases.h),
+// phase ("coarse " before it in a coarse stage), T_f bound and reached, how it ended in
+// words (solve_outcome_words), certificate, Ipopt solves, iterations and seconds, and "*"
+// for a new best (for a real failure, Ipopt's status in parentheses). The loop's last line, stop_line() (search/reduction_phases.h),
 // says why it stopped.
 std::string solve_log_header();
 std::string solve_log_line(int number, const SolveRecord& r);

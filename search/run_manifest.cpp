@@ -67,6 +67,16 @@ void differences_in_scenes(const json& was, const json& is, std::vector<std::str
       out.push_back("scene '" + name + "': file content differs (" + value_text(b.at("file")) +
                     " sha256 " + short_hash(b.at("sha256")) + " there, " + value_text(s.at("file")) +
                     " sha256 " + short_hash(s.at("sha256")) + " here)");
+    const json none;
+    const json& g0 = b.contains("guess") ? b["guess"] : none;
+    const json& g1 = s.contains("guess") ? s["guess"] : none;
+    auto guess_text = [](const json& g) {
+      return g.is_null() ? std::string("none")
+                         : value_text(g.at("file")) + " sha256 " + short_hash(g.at("sha256"));
+    };
+    if ((g0.is_null() ? json() : g0.at("sha256")) != (g1.is_null() ? json() : g1.at("sha256")))
+      out.push_back("scene '" + name + "': --guess " + guess_text(g0) + " there, " + guess_text(g1) +
+                    " here");
     if (b.at("overrides") != s.at("overrides"))
       out.push_back("scene '" + name + "': overrides " + list_text(b.at("overrides")) + " there, " +
                     list_text(s.at("overrides")) + " here");
@@ -123,7 +133,10 @@ json search_manifest(const SearchPlan& plan, const Settings& settings, const Man
                       {"file", job.scene.source},
                       {"sha256", file_sha256(job.scene.source)},
                       {"overrides", job.overrides},
-                      {"starts", job.starts}});
+                      {"starts", job.starts},
+                      {"guess", job.guess.empty() ? json(nullptr)
+                                                  : json{{"file", job.guess.source},
+                                                         {"sha256", file_sha256(job.guess.source)}}}});
   json values = json::object();
   for (const auto& [k, v] : settings.values()) values[k] = v;
   const auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());

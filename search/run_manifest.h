@@ -2,22 +2,23 @@
 // for writing into a directory that already holds a run.
 //
 // The manifest says what the run is: disco's version, the CONFIG files (path, SHA-256),
-// every scene (name, file, SHA-256 of the file's bytes, the scene overrides applied), the
+// every scene (name, file, SHA-256 of the file's bytes, the scene overrides applied, its
+// --guess file and SHA-256 or null), the
 // --set list, the seed, --starts, --time-limit, the settings (file, SHA-256 of
 // Settings::canonical_text(), and every value). `invocations` lists each command that wrote
 // into the directory (version, UTC time, resumed or not, starts, time limit).
 //
 //   {"format": "disco-search-manifest", "format_version": 1, "mode": "search",
 //    "version": "0.1.0 (git …)", "configs": [{"file", "sha256"}],
-//    "scenes": [{"name", "file", "sha256", "overrides": [...], "starts"}],
+//    "scenes": [{"name", "file", "sha256", "overrides": [...], "starts", "guess"}],
 //    "overrides": [...], "seed": 7, "starts": 0, "time_limit": 0,
 //    "settings": {"file", "sha256", "values": {"elastic.zeta": "10", ...}},
 //    "invocations": [{"version", "utc", "resume", "starts", "time_limit"}]}
 //
 // What must match to resume (manifest_differences): the scenes (names, file contents,
-// overrides), the seed and every settings value. The starts per scene and the time limits
-// may change: start k is the same start whatever the count (search/start.h), so a resume
-// may add starts or run without the limit that cut the earlier run short. A different
+// overrides, --guess file contents), the seed and every settings value. The starts per
+// scene and the time limits may change: start k is the same start whatever the count
+// (search/start.h), so a resume may add starts or run without the limit that cut the earlier run short. A different
 // disco version is allowed with a warning (the manifest keeps both).
 //
 // Output directory rules (prepare_out_dir):

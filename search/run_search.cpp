@@ -19,6 +19,8 @@
 #include "core/util/interrupt.h"
 #include "core/util/numbers.h"
 #include "search/coordinator.h"
+#include "search/guess.h"
+#include "search/homotopy.h"
 #include "search/run_manifest.h"
 #include "search/run_start.h"
 #include "search/search_plan.h"
@@ -51,7 +53,10 @@ struct IncumbentLink {
 
 StartOutcome run_task(const Context& c, const Task& t, json* solution, const IncumbentLink& link) {
   const Scene& scene = c.plan.scenes[t.scene].scene;
-  const StartSpec spec = make_start(scene, c.seed, t.start, c.schedule, c.elastic);
+  const SceneJob& job = c.plan.scenes[t.scene];
+  StartSpec spec = make_start(scene, c.seed, t.start, c.schedule, c.elastic);
+  const bool guessed = t.start == 0 && !job.guess.empty();
+  if (guessed) spec = with_guess(spec, job.guess);
   // --verbose: every elastic-mode solve of every start, on the rank that runs it.
   const bool verbose = spdlog::should_log(spdlog::level::debug);
   SolveCallback on_solve;
@@ -65,7 +70,8 @@ StartOutcome run_task(const Context& c, const Task& t, json* solution, const Inc
                              link.incumbent);
   if (solution != nullptr && !solution->is_null())
     (*solution)["provenance"] = provenance_json(
-        {"search", scene.source, c.plan.scenes[t.scene].overrides, c.sets, c.seed, t.start},
+        {"search", scene.source, job.overrides, c.sets, c.seed, t.start,
+         guessed ? job.guess.source : std::string()},
         c.settings);
   o.rank = c.rank;
   spdlog::debug("  {} start {}: {}", scene.name, t.start, o.stopped);
@@ -153,6 +159,7 @@ int run_search(const SearchOptions& o, Transport& transport) {
   c.elastic = elastic_settings(c.settings);
   IpoptSolver check(ipopt_options(c.settings));  // bad Ipopt options fail here, on every rank
   c.plan = load_search_plan(o.configs, o.starts, 1, scene_sets);
+  attach_guesses(c.plan, o.guesses);
   // Every scene's model must fit model.memory_limit, shared by this machine's ranks (each
   // solves one start at a time): refused here, on every rank, before any start runs.
   for (const SceneJob& job : c.plan.scenes)
@@ -172,7 +179,17 @@ int run_search(const SearchOptions& o, Transport& transport) {
       o.out, o.resume ? OutDirMode::kResume : o.force ? OutDirMode::kForce : OutDirMode::kFresh,
       manifest);
   if (o.resume && earlier == 0) spdlog::info("resume: {} holds no run yet; starting afresh", o.out);
-  Coordinator coordinator(c.plan, o.out, o.seed, o.time_limit, earlier > 0, c.share);
+  GuessClassFunction guess_class;
+  if (defer_seen_classes(c.settings)) {
+    guess_class = [&c](int s, int k) {
+      const SceneJob& job = c.plan.scenes[s];
+      StartSpec spec = make_start(job.scene, c.seed, k, c.schedule, c.elastic);
+      if (k == 0 && !job.guess.empty()) spec = with_guess(spec, job.guess);
+      const HomotopyClass h = homotopy_class(job.scene, guess_paths(job.scene, spec));
+      return h.decided() ? h.key(job.scene) : std::string();
+    };
+  }
+  Coordinator coordinator(c.plan, o.out, o.seed, o.time_limit, earlier > 0, c.share, guess_class);
   std::thread answering;
   if (transport.size() > 1) answering = std::thread([&] { serve_workers(coordinator, transport); });
   // The live line: refreshed every second by a thread that only reads the

@@ -40,6 +40,9 @@ struct SearchOptions {
   // --deterministic: search.share_incumbent = false (each start runs alone: the same runs and
   // best for any number of ranks, and on --resume).
   bool deterministic = false;
+  // --guess FILE (repeatable): solution files; start 0 of each one's scene starts from it
+  // (attach_guesses, search/search_plan.h).
+  std::vector<std::string> guesses;
   // Rank 0: called about once a second with the live status line (starts done,
   // elapsed, ETA, best T_f, starts running) and with "" at the end. Unset: none.
   std::function<void(const std::string&)> on_status;

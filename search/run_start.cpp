@@ -11,8 +11,11 @@
 #include "core/model/model_size.h"
 #include "core/model/solution.h"
 #include "core/util/interrupt.h"
+#include "search/guess.h"
+#include "search/homotopy.h"
 #include "search/reduction_phases.h"
 #include "search/solve_scene.h"
+#include "search/trajectory.h"
 
 namespace disco {
 namespace {
@@ -88,6 +91,8 @@ json StartOutcome::to_json() const {
           {"description", description},
           {"guess", to_string(guess)},
           {"schedule", schedule},
+          {"guess_class", guess_class},
+          {"class", best_class},
           {"history", history},
           {"incumbent", number_or_null(incumbent)},
           {"rank", rank},
@@ -117,6 +122,8 @@ StartOutcome StartOutcome::from_json(const json& j) {
   o.description = j.value("description", "");
   o.guess = guess_kind_from_string(j.value("guess", "straight"));
   o.schedule = j.value("schedule", json::object());
+  o.guess_class = j.value("guess_class", json());
+  o.best_class = j.value("class", json());
   o.history = j.value("history", std::vector<std::array<double, 2>>{});
   if (j.contains("incumbent")) o.incumbent = number_or_nan(j["incumbent"]);
   o.rank = j.value("rank", 0);
@@ -138,6 +145,7 @@ StartOutcome run_start(const Scene& scene, const Settings& settings, const Start
   out.budget = time_budget_s;
   out.budget_source = time_budget_s > 0 ? budget_source : BudgetSource::kNone;
   try {
+    out.guess_class = homotopy_class(scene, guess_paths(scene, start)).to_json(scene);
     SceneSolve run = solve_scene(scene, settings, start, time_budget_s, on_solve, incumbent);
     const ReductionResult& r = run.result;
     out.status = status_of(r.status);
@@ -150,6 +158,7 @@ StartOutcome run_start(const Scene& scene, const Settings& settings, const Start
     if (std::isfinite(r.incumbent)) out.incumbent = r.incumbent;
     if (r.found) {
       out.T_f = r.T_best;
+      out.best_class = homotopy_class(scene, paths_of(*run.problem, run.z)).to_json(scene);
     } else {
       out.detail = r.feasibility_detail;
       if (const std::string where = violations_text(run.info.violations); !where.empty())

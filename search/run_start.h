@@ -67,6 +67,9 @@ struct StartOutcome {
   std::string description;  // StartSpec::describe()
   GuessKind guess = GuessKind::kStraight;  // the initial guess's kind ("guess": to_string)
   nlohmann::json schedule;  // StartSpec::schedule_json(): the reduction schedule and zeta
+  // The homotopy class (search/homotopy.h, HomotopyClass::to_json) of the initial guess's
+  // paths ("guess_class") and of the best point ("class"; null without one).
+  nlohmann::json guess_class, best_class;
   // Every new best of the start: [seconds within the start, T_f] (ReductionResult::history).
   std::vector<std::array<double, 2>> history;
   // s: the scene's shared incumbent when the start ended (NaN: none; search/reduction_phases.h)

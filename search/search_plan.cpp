@@ -9,6 +9,7 @@
 #include "core/config/yaml_nodes.h"
 #include "core/model/scene_yaml.h"
 #include "core/util/errors.h"
+#include "search/trajectory.h"
 
 namespace disco {
 namespace {
@@ -106,6 +107,30 @@ SearchPlan load_search_plan(const std::vector<std::string>& configs, int starts_
       throw InputError(job.scene.source + ": key 'scenario': the name '" + job.scene.name +
                        "' appears twice in this search; scene names must be unique");
   return plan;
+}
+
+void attach_guesses(SearchPlan& plan, const std::vector<std::string>& files) {
+  for (const std::string& file : files) {
+    const nlohmann::json doc = read_guess_document(file);
+    const std::string scenario =
+        doc.is_object() && doc.contains("scenario") && doc["scenario"].is_string()
+            ? doc["scenario"].get<std::string>()
+            : std::string();
+    SceneJob* job = nullptr;
+    std::string names;
+    for (SceneJob& j : plan.scenes) {
+      names += (names.empty() ? "" : ", ") + j.scene.name;
+      if (j.scene.name == scenario) job = &j;
+    }
+    if (job == nullptr && plan.scenes.size() == 1) job = &plan.scenes.front();
+    if (job == nullptr)
+      throw InputError("--guess " + file + ": its scenario '" + printable(scenario, kEchoLimit) +
+                       "' is not a scene of this search (" + names + ")");
+    if (!job->guess.empty())
+      throw InputError("--guess " + file + ": scene '" + job->scene.name + "' already has one (" +
+                       job->guess.source + ")");
+    job->guess = trajectory_from_solution(doc, job->scene, file);
+  }
 }
 
 }  // namespace disco

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "core/model/scene.h"
+#include "search/start.h"
 
 namespace disco {
 
@@ -33,6 +34,9 @@ struct SceneJob {
   int starts = 1;
   double time_limit = 0.0;        // s for all the scene's starts, from its first; 0 = none
   double start_time_limit = 0.0;  // s per start; 0 = none
+  // --guess FILE for this scene (search/trajectory.h): its start 0 starts from it instead of
+  // the straight guess. Empty: none.
+  Trajectory guess;
 };
 
 struct SearchPlan {
@@ -45,5 +49,11 @@ struct SearchPlan {
 // `scene_overrides` apply to every scene (after a benchmark entry's own `set`).
 SearchPlan load_search_plan(const std::vector<std::string>& configs, int starts_override,
                             int default_starts, const std::vector<std::string>& scene_overrides);
+
+// `disco search --guess FILE ...`: each solution file goes to the scene named by its
+// "scenario", or, in a plan of one scene, to that scene whatever its name; read and checked
+// against the scene by read_guess_file (search/trajectory.h). InputError for a file whose
+// scenario is not in the plan, or a second file for one scene.
+void attach_guesses(SearchPlan& plan, const std::vector<std::string>& files);
 
 }  // namespace disco

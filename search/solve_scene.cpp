@@ -2,10 +2,15 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <optional>
+
+#include <spdlog/fmt/fmt.h>
 
 #include "core/config/solver_settings.h"
 #include "core/model/model_size.h"
 #include "search/guess.h"
+#include "search/trajectory.h"
 
 namespace disco {
 
@@ -26,7 +31,43 @@ bool certify_best(const Scene& scene, const RobotProblem& problem, const Elastic
   return c.within(tol.violation_tol, tol.complementarity_tol);
 }
 
+// One stage of a start: its objective reduction on `problem`. A start from a trajectory
+// first solves at (1 + guess_slack) times the trajectory's T_f.
+ReductionResult reduce(RobotProblem& problem, const ElasticSolver& solver, const StartSpec& start,
+                       ReductionSettings schedule, const SolveCallback& on_solve,
+                       const IncumbentFunction& incumbent) {
+  if (start.guess == GuessKind::kGiven)
+    schedule.horizon = (1.0 + schedule.guess_slack) * start.given.seconds;
+  return reduce_objective(
+      problem, solver, schedule, [&](double T) { return make_guess(problem, start, T); },
+      on_solve, make_perturbation(problem, start), incumbent);
+}
+
+// The coarse stage's counts and clock in front of the fine stage's.
+void prepend(const ReductionResult& coarse, ReductionResult& fine) {
+  const double dt = coarse.seconds;
+  fine.nlp_solves += coarse.nlp_solves;
+  fine.iterations += coarse.iterations;
+  fine.seconds += dt;
+  if (fine.time_to_first_feasible >= 0) fine.time_to_first_feasible += dt;
+  if (fine.time_to_best >= 0) fine.time_to_best += dt;
+  for (auto& h : fine.history) h.seconds += dt;
+  std::vector<SolveRecord> solves = coarse.solves;
+  for (SolveRecord& r : solves) {
+    r.coarse = true;
+    r.improved = false;
+  }
+  solves.insert(solves.end(), fine.solves.begin(), fine.solves.end());
+  fine.solves = std::move(solves);
+}
+
 }  // namespace
+
+int coarse_steps(const Scene& scene, const ReductionSettings& schedule) {
+  if (!(schedule.coarse_fraction > 0.0)) return 0;
+  const int n = std::max(2, static_cast<int>(std::lround(schedule.coarse_fraction * scene.steps)));
+  return n < scene.steps ? n : 0;
+}
 
 SceneSolve solve_scene(const Scene& scene, const Settings& settings, const StartSpec& start,
                        double time_budget_s, const SolveCallback& on_solve,
@@ -42,12 +83,36 @@ SceneSolve solve_scene(const Scene& scene, const Settings& settings, const Start
   }
   ElasticSolver solver(ipopt, start.elastic);
 
+  // Coarse to fine: the start on the scene at fewer steps, then the full scene from its
+  // answer (or, without one, from the start's own guess).
+  StartSpec fine = start;
+  std::optional<ReductionResult> coarse;
+  if (const int n = start.guess == GuessKind::kGiven ? 0 : coarse_steps(scene, schedule); n > 0) {
+    Scene small = scene;
+    small.steps = n;
+    RobotProblem problem(small, model_options(settings));
+    SolveCallback on_coarse;
+    if (on_solve) {
+      on_coarse = [&](const SolveRecord& r) {
+        SolveRecord c = r;
+        c.coarse = true;
+        c.improved = false;
+        on_solve(c);
+      };
+    }
+    coarse = reduce(problem, solver, start, schedule, on_coarse, {});
+    if (coarse->found)
+      fine = with_guess(start, {resample(paths_of(problem, coarse->best.z), scene.steps),
+                                coarse->T_best, fmt::format("coarse N_t = {}", n)});
+    if (schedule.time_limit > 0)  // the fine stage has what is left (at once past its end)
+      schedule.time_limit = std::max(1e-3, schedule.time_limit - coarse->seconds);
+  }
+
   SceneSolve out;
   out.problem = std::make_unique<RobotProblem>(scene, model_options(settings));
   RobotProblem& problem = *out.problem;
-  out.result = reduce_objective(
-      problem, solver, schedule, [&](double T) { return make_guess(problem, start, T); },
-      on_solve, make_perturbation(problem, start), incumbent);
+  out.result = reduce(problem, solver, fine, schedule, on_solve, incumbent);
+  if (coarse) prepend(*coarse, out.result);
   if (out.result.found &&
       !certify_best(scene, problem, start.elastic, out.result.best.z, out.info.certificate)) {
     out.result.found = false;  // never expected: the plan is a proof

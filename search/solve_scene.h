@@ -25,7 +25,18 @@ struct SceneSolve {
   double T_f() const { return result.T_best; }
 };
 
-// Runs `start` (make_start) on `scene`. A time budget > 0 caps the whole
+// The steps of a coarse-to-fine start's coarse stage (feasibility.coarse_fraction):
+// max(2, round(coarse_fraction N_t)), or 0 (no coarse stage) when the fraction is 0 or that is
+// not fewer than N_t.
+int coarse_steps(const Scene& scene, const ReductionSettings& schedule);
+
+// Runs `start` (make_start) on `scene`. With feasibility.coarse_fraction > 0 (and a start not
+// from a trajectory already), the start first runs on the scene at coarse_steps() steps, with
+// its own guess and schedule and no incumbent, and the full scene then starts from that
+// answer (a kGiven start, search/trajectory.h: its paths resampled to N_t, first solved at
+// (1 + guess_slack) times its T_f), or from the start's own guess if the coarse stage found
+// none. The coarse solves come first in the result (SolveRecord::coarse; never a best),
+// their iterations and time count, and the time budget covers both stages. A time budget > 0 caps the whole
 // objective reduction and every elastic solve inside it.
 // Throws InputError for bad settings (Ipopt options, elastic or reduction keys) and for a
 // scene whose model would exceed model.memory_limit (core/model/model_size.h), before

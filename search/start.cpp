@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <stdexcept>
+#include <utility>
 
 #include "core/util/check.h"
 #include "search/guess.h"
@@ -23,6 +24,12 @@
 // 1: detour right, 2: yield, 3: perturbed, 4: perturbed feasible (detours
 // first: on the paper's A3/A4 they reached the best optima, perturbed starts
 // rarely did; under a time budget the first starts are the ones that run).
+// "Left" and "right" are side patterns: the scene's m-th detour start (m = 2 ((index - 1)
+// / 5) + 0 for the left slot, + 1 for the right) takes pattern m of the order all left, all
+// right, then the mixed patterns 1, 2, ..., 2^k - 2 (bit p: conflicting pair p on the right),
+// cyclically, for k <= kEnumeratedPairs conflicting pairs: so the first 2^k detour starts
+// try every way around of the conflicting pairs (start 1 all left and start 2 all right, as
+// before patterns). With more pairs, m >= 2 draws its pattern (stream 2).
 // Without one (detours and yields would be the straight guess), perturbed and
 // perturbed feasible alternate: (index - 1) % 2 = 0: perturbed, 1: perturbed
 // feasible.
@@ -74,13 +81,14 @@ std::string to_string(GuessKind kind) {
     case GuessKind::kDetour: return "detour";
     case GuessKind::kPerturbedFeasible: return "perturbed feasible";
     case GuessKind::kYield: return "yield";
+    case GuessKind::kGiven: return "given";
   }
   return "unknown";
 }
 
 GuessKind guess_kind_from_string(const std::string& text) {
   for (GuessKind k : {GuessKind::kStraight, GuessKind::kPerturbed, GuessKind::kDetour,
-                      GuessKind::kPerturbedFeasible, GuessKind::kYield})
+                      GuessKind::kPerturbedFeasible, GuessKind::kYield, GuessKind::kGiven})
     if (to_string(k) == text) return k;
   throw std::invalid_argument("unknown guess kind '" + text + "'");
 }
@@ -90,7 +98,12 @@ static std::string guess_text(const StartSpec& s) {
   std::string kind = to_string(s.guess);
   char buf[64];
   if (s.guess == GuessKind::kDetour) {
-    kind += s.detour_side > 0 ? " left" : " right";
+    if (s.detour_side != 0) {
+      kind += s.detour_side > 0 ? " left" : " right";
+    } else {  // one letter per conflicting pair
+      kind += " ";
+      for (int k = 0; k < s.detour_pairs; ++k) kind += (s.detour_pattern >> k & 1u) ? 'R' : 'L';
+    }
   } else if (s.guess == GuessKind::kPerturbed) {
     std::snprintf(buf, sizeof buf, " %.2f", s.perturbation);
     kind += buf;
@@ -99,6 +112,13 @@ static std::string guess_text(const StartSpec& s) {
     kind += buf;
   } else if (s.guess == GuessKind::kYield) {
     std::snprintf(buf, sizeof buf, " margin %.2f", s.margin);
+    kind += buf;
+  } else if (s.guess == GuessKind::kGiven) {
+    std::snprintf(buf, sizeof buf, " (T_f %.6f s)", s.given.seconds);
+    kind += " " + s.given.source + buf;
+  }
+  if (s.schedule.coarse_fraction > 0.0 && s.guess != GuessKind::kGiven) {
+    std::snprintf(buf, sizeof buf, ", coarse %.2f N_t first", s.schedule.coarse_fraction);
     kind += buf;
   }
   return kind;
@@ -119,6 +139,13 @@ std::string StartSpec::describe() const {
                 index, kind.c_str(), schedule.horizon_factor, schedule.rate, schedule.grow,
                 schedule.shrink, schedule.min_rate, elastic.zeta);
   return line;
+}
+
+StartSpec with_guess(StartSpec start, Trajectory trajectory) {
+  DISCO_CHECK(!trajectory.empty() && trajectory.seconds > 0.0, "a trajectory with a horizon");
+  start.guess = GuessKind::kGiven;
+  start.given = std::move(trajectory);
+  return start;
 }
 
 StartSpec make_start(const Scene& scene, std::uint64_t seed, int index,
@@ -145,7 +172,8 @@ StartSpec make_start(const Scene& scene, std::uint64_t seed, int index,
   const double margin = uniform(g, 1.0, 1.5);
 
   enum { kPerturbedSlot, kLeft, kRight, kFeasibleSlot, kYieldSlot } slot;
-  if (conflicts(scene).empty()) {
+  const int pairs = static_cast<int>(conflicts(scene).size());
+  if (pairs == 0) {
     slot = (index - 1) % 2 == 0 ? kPerturbedSlot : kFeasibleSlot;
   } else {
     static constexpr decltype(slot) kCycle[5] = {kLeft, kRight, kYieldSlot, kPerturbedSlot,
@@ -154,10 +182,27 @@ StartSpec make_start(const Scene& scene, std::uint64_t seed, int index,
   }
   switch (slot) {
     case kLeft:
-    case kRight:
+    case kRight: {
       s.guess = GuessKind::kDetour;
-      s.detour_side = slot == kLeft ? +1 : -1;
+      s.detour_pairs = pairs;
+      // The scene's m-th detour start (m = 0, 1, 2, ...): all left, all right, then the
+      // mixed patterns, enumerated for up to kEnumeratedPairs conflicting pairs, else drawn.
+      const int m = 2 * ((index - 1) / 5) + (slot == kRight ? 1 : 0);
+      const std::uint64_t all = pairs >= 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << pairs) - 1;
+      std::uint64_t pattern = 0;
+      if (pairs <= kEnumeratedPairs) {
+        const int j = m % (1 << pairs);
+        pattern = j == 0 ? 0 : j == 1 ? all : static_cast<std::uint64_t>(j - 1);
+      } else if (m == 1) {
+        pattern = all;
+      } else if (m >= 2) {
+        std::mt19937_64 bits = start_generator(seed, scene.name, index, 2);
+        pattern = bits() & all;
+      }
+      s.detour_pattern = pattern;
+      s.detour_side = pattern == 0 ? +1 : pattern == all ? -1 : 0;
       break;
+    }
     case kPerturbedSlot:
       s.guess = GuessKind::kPerturbed;
       s.perturbation = perturbation;

@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "core/elastic/elastic_solver.h"
 #include "core/model/robot_problem.h"
@@ -33,25 +34,53 @@ enum class GuessKind {
   kDetour,     // robots whose straight paths cross pass each other on one side
   kPerturbedFeasible,  // straight lines, then the feasible point re-timed and re-solved
   kYield,      // straight lines; in a random priority order, robots wait until the way is clear
+  kGiven,      // a given trajectory (StartSpec::given): `--guess FILE`, or the coarse answer of
+               // a coarse-to-fine start (search/solve_scene.h)
 };
-std::string to_string(GuessKind kind);  // "straight", "perturbed", "detour", "perturbed feasible", "yield"
+// "straight", "perturbed", "detour", "perturbed feasible", "yield", "given"
+std::string to_string(GuessKind kind);
 // The kind named by `text` (as to_string gives it); std::invalid_argument otherwise.
 GuessKind guess_kind_from_string(const std::string& text);
+
+// paths[i][t]: the pose of robot i at state t = 0..N, SI units (metres, radians).
+using Paths = std::vector<std::vector<Pose>>;
+
+// A trajectory to start from (search/trajectory.h): the robots' paths at the scene's N steps
+// and the horizon they were found at.
+struct Trajectory {
+  Paths paths;
+  double seconds = 0.0;  // its T_f, s
+  std::string source;    // where it came from, for messages: the file, or "coarse N_t = 20"
+  bool empty() const { return paths.empty(); }
+};
 
 struct StartSpec {
   int index = 0;
   std::uint64_t seed = 0;
   GuessKind guess = GuessKind::kStraight;
-  int detour_side = 0;            // kDetour: +1 left, -1 right (per conflicting pair, search/guess.h)
+  int detour_side = 0;            // kDetour: +1 every pair left, -1 every pair right, 0 mixed
+  std::uint64_t detour_pattern = 0;  // kDetour: bit k set: conflicting pair k on the right
+                                     // (search/guess.h, detour_paths)
+  int detour_pairs = 0;              // kDetour: the scene's conflicting pairs
   double perturbation = 0.0;      // kPerturbed: relative amplitude; kPerturbedFeasible: of the warp
   double T_scale = 1.0;           // kPerturbedFeasible: re-solve horizon / feasible horizon
   double margin = 1.0;            // kYield: clearance multiple kept from higher-priority robots
+  Trajectory given;               // kGiven: the trajectory; the first feasibility horizon is
+                                  // (1 + feasibility.guess_slack) times its T_f
   ReductionSettings schedule;     // feasibility horizon factor, reduction rate, grow, shrink, ...
   ElasticSettings elastic;        // zeta, formulation, ...
   std::string describe() const;   // one line, for runs.jsonl and reports
   // {horizon_factor, rate, grow, shrink, min_rate, zeta}: the schedule that varies by start.
   nlohmann::json schedule_json() const;
 };
+
+// `start` with its guess replaced by `trajectory` (kind kGiven); its schedule stays.
+StartSpec with_guess(StartSpec start, Trajectory trajectory);
+
+// Detour starts enumerate every side pattern of a scene with at most this many conflicting
+// pairs (2^k patterns: all left, all right, then the mixed ones); with more, the mixed
+// patterns are drawn (stream 2 of the start's generator).
+inline constexpr int kEnumeratedPairs = 3;
 
 // The start `index` for `scene` under `seed`, varying the given base settings.
 StartSpec make_start(const Scene& scene, std::uint64_t seed, int index,

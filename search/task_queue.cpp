@@ -32,16 +32,25 @@ Task Task::from_json(const nlohmann::json& j) {
 }
 
 TaskQueue::TaskQueue(const SearchPlan& plan, double time_limit,
-                     const std::set<std::pair<int, int>>& done)
+                     const std::set<std::pair<int, int>>& done,
+                     const GuessClassFunction& guess_class)
     : plan_(plan), time_limit_(time_limit), scenes_(plan.scenes.size()) {
   std::vector<int> order(plan.scenes.size());
   for (std::size_t s = 0; s < order.size(); ++s) order[s] = static_cast<int>(s);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
     return cost(plan.scenes[a].scene) > cost(plan.scenes[b].scene);
   });
-  for (int s : order)
-    for (int k = 0; k < plan.scenes[s].starts; ++k)
+  for (int s : order) {
+    std::vector<int> first, seen;  // start indices
+    std::set<std::string> classes;
+    for (int k = 0; k < plan.scenes[s].starts; ++k) {
+      const std::string c = guess_class ? guess_class(s, k) : std::string();
+      (c.empty() || classes.insert(c).second ? first : seen).push_back(k);
+    }
+    first.insert(first.end(), seen.begin(), seen.end());
+    for (int k : first)
       if (!done.count({s, k})) pending_.push_back({s, k, 0.0});
+  }
   total_ = plan.total_starts();
 }
 

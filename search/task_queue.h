@@ -14,7 +14,9 @@
 // Not thread-safe: search/coordinator.h guards it.
 #pragma once
 
+#include <functional>
 #include <map>
+#include <string>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
@@ -36,11 +38,19 @@ struct Task {
   static Task from_json(const nlohmann::json& j);
 };
 
+// The homotopy class key of the guess of start `start` of scene `scene` (search/homotopy.h),
+// "" when the guess decides none (some pair's turn is "?").
+using GuessClassFunction = std::function<std::string(int scene, int start)>;
+
 class TaskQueue {
  public:
   // Every task of `plan` but those in `done` ((scene, start) pairs: final outcomes of an
-  // earlier run); `time_limit` is the whole search's (s; 0 = none).
-  TaskQueue(const SearchPlan& plan, double time_limit, const std::set<std::pair<int, int>>& done);
+  // earlier run); `time_limit` is the whole search's (s; 0 = none). With `guess_class`
+  // (search.defer_seen_classes), each scene's starts whose guess has a class ("" never
+  // counts) that a lower start of the scene's guess already has are deferred after the
+  // scene's other starts, index order kept within both groups: untried classes run first.
+  TaskQueue(const SearchPlan& plan, double time_limit, const std::set<std::pair<int, int>>& done,
+            const GuessClassFunction& guess_class = {});
 
   // The next task for `rank` at search time `now` (s), or none: every task handed out,
   // or the search's time limit passed. Scenes whose own limit has passed are skipped.

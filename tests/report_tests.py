@@ -40,6 +40,9 @@ from PIL import Image
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from script_checks import check, finish  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts"))
+from viz.search_plots import has_final_point  # noqa: E402
+
 DISCO, SCRIPTS, CONFIGS, WORK, MODE = sys.argv[1:6]
 REPORT = os.path.join(SCRIPTS, "report")
 SHOT = os.path.join(SCRIPTS, "screenshot_report")
@@ -251,6 +254,20 @@ def build():
                 check(any(row["class"] == "best" for row in found), f"{name}: best start marked")
         marked = [row for rows in starts.values() for row in rows if row["class"] == "best"]
         check(len(marked) == (s["T_f"] is not None), f"{name}: one best row ({len(marked)})")
+        # The homotopy classes: a row per class the scene's certified starts ended in, with
+        # its best T_f and how many starts ended in it, from runs.jsonl's "class".
+        ended = {}
+        for r in mine:
+            if r.get("class") and has_final_point(r):
+                e = ended.setdefault(r["class"]["key"] or "(no pair within reach)", [None, 0])
+                e[0] = r["T_f"] if e[0] is None else min(e[0], r["T_f"])
+                e[1] += 1
+        class_rows = {row["cells"][0]: row["cells"] for row in page.rows
+                      if row["section"] == sec and len(row["cells"]) == 6}
+        for key, (T, n) in ended.items():
+            cells = class_rows.get(key, [])
+            check(len(cells) == 6 and cells[1] == f"{T:.6f}" and cells[4] == str(n),
+                  f"{name}: class '{key}': best {T:.6f}, {n} starts ({cells})")
 
     # Bad input.
     r = run([REPORT, os.path.join(WORK, "no_such_dir")])

@@ -57,6 +57,25 @@ TEST(TaskQueue, LargerScenesFirstEveryStartOnceAndDoneStartsSkipped) {
   EXPECT_FALSE(q.time_limited()) << "every task was handed out";
 }
 
+TEST(TaskQueue, StartsOfAGuessClassAlreadyTriedAreDeferredAfterTheScenesOthers) {
+  SearchPlan plan;
+  plan.scenes = {job("one_robot_axis", 7)};
+  // Start 6 is done already; "" (an undecided guess) is never deferred.
+  const std::vector<std::string> classes = {"", "L", "R", "L", "", "R", "M"};
+  TaskQueue q(plan, 0.0, {{0, 6}}, [&](int scene, int start) {
+    EXPECT_EQ(scene, 0);
+    return classes.at(start);
+  });
+  std::vector<int> order;
+  while (const auto t = q.next(0, 0.0)) order.push_back(t->start);
+  EXPECT_EQ(order, (std::vector<int>{0, 1, 2, 4, 3, 5}));
+  // Without the function: index order.
+  TaskQueue plain(plan, 0.0, {});
+  order.clear();
+  while (const auto t = plain.next(0, 0.0)) order.push_back(t->start);
+  EXPECT_EQ(order, (std::vector<int>{0, 1, 2, 3, 4, 5, 6}));
+}
+
 TEST(TaskQueue, ABudgetIsTheSmallestLimitLeftAndSaysWhichSetIt) {
   SearchPlan plan;
   plan.scenes = {job("one_robot_axis", 4, /*scene*/ 10.0, /*start*/ 4.0)};

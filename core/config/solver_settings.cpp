@@ -36,6 +36,13 @@ double below_one(const Settings& s, const std::string& key) {
   return v;
 }
 
+// A fraction where 0 means none: 0 <= v < 1.
+double fraction_or_none(const Settings& s, const std::string& key) {
+  const double v = s.number(key);
+  if (!(v >= 0 && v < 1)) refuse(s, key, "must be >= 0 and below 1 (0: none)");
+  return v;
+}
+
 // A count with a lower bound.
 int integer_at_least(const Settings& s, const std::string& key, int min) {
   const int v = s.integer(key);
@@ -119,6 +126,8 @@ ReductionSettings reduction_settings(const Settings& s) {
   ReductionSettings r;
   r.horizon_factor = positive(s, "feasibility.horizon_factor");
   r.horizon_min = positive(s, "feasibility.horizon_min");
+  r.guess_slack = non_negative(s, "feasibility.guess_slack");
+  r.coarse_fraction = fraction_or_none(s, "feasibility.coarse_fraction");
   r.rate = below_one(s, "reduction.rate");
   r.grow = positive(s, "reduction.grow");
   r.shrink = below_one(s, "reduction.shrink");
@@ -136,5 +145,6 @@ ReductionSettings reduction_settings(const Settings& s) {
 }
 
 bool share_incumbent(const Settings& s) { return s.boolean(kShareIncumbentKey); }
+bool defer_seen_classes(const Settings& s) { return s.boolean("search.defer_seen_classes"); }
 
 }  // namespace disco

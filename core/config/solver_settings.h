@@ -35,6 +35,15 @@ struct ReductionSettings {
   Minimizer minimizer = Minimizer::kElastic;
   double horizon_factor = 0.0;
   double horizon_min = 0.0;  // s
+  // A start from a trajectory (search/trajectory.h): its first feasibility horizon is
+  // (1 + guess_slack) times the trajectory's T_f.
+  double guess_slack = 0.0;
+  // > 0: a start first solves the scene at round(coarse_fraction N_t) steps, then the full
+  // scene from that answer (coarse to fine, search/solve_scene.h); 0: no coarse stage.
+  double coarse_fraction = 0.0;
+  // Not a setting: the first feasibility horizon (s) of a start from a trajectory, set by
+  // solve_scene; 0: max(horizon_min, horizon_factor * reference time).
+  double horizon = 0.0;
   double rate = 0.0, grow = 0.0, shrink = 0.0, min_rate = 0.0;
   int max_solves = 0;
   int step_iterations = 0;  // cap on a minimising step before switching to fixed
@@ -61,6 +70,9 @@ ReductionSettings reduction_settings(const Settings& settings);      // `feasibi
 // T_f of their scene (search/coordinator.h); `disco search --deterministic` sets it false.
 inline constexpr const char* kShareIncumbentKey = "search.share_incumbent";
 bool share_incumbent(const Settings& settings);
+// search.defer_seen_classes: whether a search hands out first the starts whose guess is of a
+// homotopy class no lower start of the scene has (search/task_queue.h).
+bool defer_seen_classes(const Settings& settings);
 
 // The value of the text key `key` among `choices` (name, value); any other text is an
 // InputError naming the key and listing the names.

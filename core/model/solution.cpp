@@ -171,7 +171,9 @@ json provenance_json(const Provenance& p, const Settings& settings) {
           {"start", p.start},
           {"settings_file", settings.source()},
           {"settings_sha256", sha256_hex(settings.canonical_text())},
-          {"version", disco_version()}};
+          {"version", disco_version()},
+          {"guess", p.guess.empty() ? json(nullptr)
+                                    : json{{"file", p.guess}, {"sha256", file_sha256(p.guess)}}}};
 }
 
 std::string violations_text(const std::vector<RobotProblem::Violation>& v, std::size_t most) {

@@ -21,7 +21,8 @@
 //     "search"), scene_file, scene_sha256 (of the file's bytes), scene_overrides (applied to the
 //     scene: a benchmark entry's `set`, then --set scene.*, without the prefix), overrides (the
 //     command's --set list as given), seed, start, settings_file, settings_sha256 (of
-//     Settings::canonical_text(), after the overrides), version (disco_version()).
+//     Settings::canonical_text(), after the overrides), version (disco_version()), guess (the
+//     --guess file the start began from, {file, sha256}, or null).
 #pragma once
 
 #include <cstdint>
@@ -61,6 +62,7 @@ struct Provenance {
   std::vector<std::string> overrides;        // the command's --set list, as given
   std::uint64_t seed = 1;
   int start = 0;
+  std::string guess;  // the --guess file the start began from ("": none)
 };
 // `p` with the scene file's SHA-256 (InputError if it cannot be read), the settings' file and
 // SHA-256, and disco's version: the file's "provenance".

@@ -208,6 +208,42 @@ def start_table(s):
     return f'<div class="scroll"><table>{head}{"".join(rows)}</table></div>'
 
 
+def class_table(s):
+    """The homotopy classes the scene's starts ended in (runs.jsonl "class", search/homotopy.h):
+    per class, its best T_f, how many starts ended in it and how many guesses were of it;
+    best class first. "" when no line has a class (runs of an older disco)."""
+    runs = s["runs"]
+    ended, guessed = {}, {}
+    for r in runs:
+        g = r.get("guess_class")
+        if isinstance(g, dict):
+            guessed[g.get("key", "")] = guessed.get(g.get("key", ""), 0) + 1
+        c = r.get("class")
+        if isinstance(c, dict) and has_final_point(r):
+            e = ended.setdefault(c.get("key", ""), {"n": 0, "best": None, "start": None})
+            e["n"] += 1
+            if e["best"] is None or r["T_f"] < e["best"]:
+                e["best"], e["start"] = r["T_f"], r["start"]
+    if not ended:
+        return ""
+    best_T = s["best"].get("T_f")
+    head = ("<tr><th>class (pair: turn of j around i, who passes first, touch)</th>"
+            "<th class=num>best T_f [s]</th><th class=num>vs best</th><th class=num>best start</th>"
+            "<th class=num>starts ended in it</th><th class=num>guesses of it</th></tr>")
+    rows = []
+    for key, e in sorted(ended.items(), key=lambda kv: kv[1]["best"]):
+        vs = f"{100.0 * (e['best'] - best_T) / best_T:+.2f} %" if best_T else "–"
+        rows.append(f"<tr><td>{esc(key or '(no pair within reach)')}</td>"
+                    f"<td class=num>{e['best']:.6f}</td><td class=num>{vs}</td>"
+                    f"<td class=num>{e['start']}</td><td class=num>{e['n']}</td>"
+                    f"<td class=num>{guessed.get(key, 0)}</td></tr>")
+    note = (f'<p class="muted">{len(ended)} classes reached by {sum(e["n"] for e in ended.values())} '
+            f"starts; {sum(guessed.values())} guesses, of which "
+            f"{sum(n for k, n in guessed.items() if k not in ended)} in classes no start ended "
+            f"in (guesses whose paths run through each other decide no class).</p>")
+    return f'<div class="scroll"><table>{head}{"".join(rows)}</table></div>{note}'
+
+
 def figure(title, path, caption, wide=False):
     cls = ' class="wide"' if wide else ""
     return (f'<figure{cls}><img src="{esc(path)}" alt="{esc(title)}" loading="lazy">'
@@ -254,6 +290,10 @@ def scene_section(s):
     if s["runs"] or s["search_figures"]:
         out.append("<h3>The search</h3>")
         out.extend(figure(*f) for f in s["search_figures"])
+        classes = class_table(s)
+        if classes:
+            out.append("<h4>Homotopy classes</h4>")
+            out.append(classes)
         out.append(start_table(s))
     return "\n".join(out)
 
