@@ -201,11 +201,15 @@ Paths detour_paths(const Scene& scene, std::uint64_t pattern) {
 
 Paths yield_paths(const Scene& scene, const StartSpec& start) {
   const int N = scene.steps, nr = static_cast<int>(scene.robots.size());
-  std::mt19937_64 g = start_generator(start.seed, scene.name, start.index, 1);
-  std::vector<int> order(nr);
-  for (int i = 0; i < nr; ++i) order[i] = i;
-  for (int i = nr - 1; i > 0; --i)  // Fisher-Yates with our own uniform draws
-    std::swap(order[i], order[std::min(i, static_cast<int>((i + 1) * uniform01(g)))]);
+  std::vector<int> order = start.yield_order;
+  if (order.empty()) {  // drawn: Fisher-Yates with our own uniform draws
+    std::mt19937_64 g = start_generator(start.seed, scene.name, start.index, 1);
+    order.resize(nr);
+    for (int i = 0; i < nr; ++i) order[i] = i;
+    for (int i = nr - 1; i > 0; --i)
+      std::swap(order[i], order[std::min(i, static_cast<int>((i + 1) * uniform01(g)))]);
+  }
+  DISCO_CHECK(static_cast<int>(order.size()) == nr, "a yield order lists every robot once");
   std::vector<double> clearance(nr * nr, -1.0);  // < 0: the pair does not interact
   for (const Pair& p : scene.pairs)
     clearance[p.i * nr + p.j] = clearance[p.j * nr + p.i] = disco::clearance(scene, p);

@@ -45,8 +45,9 @@
 // s' >= 1 - 2 p > 0 for p < 0.5. The shape's random numbers come from stream 1 of the
 // start's generator (search/start.h).
 //
-// Yield. Prioritised planning with waits: the robots, in a random order (Fisher-Yates on
-// stream 1), each keep their straight path and smoothstep timing but wait at the start
+// Yield. Prioritised planning with waits: the robots, in the start's yield_order (its
+// enumerated order, search/start.h; with more than kEnumeratedPairs conflicting pairs a
+// random order, Fisher-Yates on stream 1), each keep their straight path and smoothstep timing but wait at the start
 // for a fraction d of the horizon, then move on w((tau - d) / (1 - d)). Each robot takes
 // the smallest d in 0, 0.01, ..., 0.6 for which its centre distance to every robot placed
 // before it, over 8 N samples of tau, stays at least `margin` (drawn in [1, 1.5]) times

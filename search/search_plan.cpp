@@ -63,7 +63,7 @@ SearchPlan load_search_plan(const std::vector<std::string>& configs, int starts_
                  double time_limit, double start_time_limit) {
     sets.insert(sets.end(), scene_overrides.begin(), scene_overrides.end());
     SceneJob job{load_scene(path, sets), sets, starts_override > 0 ? starts_override : starts,
-                 time_limit, start_time_limit};
+                 time_limit, start_time_limit, {}};
     plan.scenes.push_back(std::move(job));
   };
   for (const auto& path : configs) {

@@ -30,6 +30,9 @@
 // cyclically, for k <= kEnumeratedPairs conflicting pairs: so the first 2^k detour starts
 // try every way around of the conflicting pairs (start 1 all left and start 2 all right, as
 // before patterns). With more pairs, m >= 2 draws its pattern (stream 2).
+// Yield starts likewise: the scene's m-th yield start (m = (index - 1) / 5) takes the m-th
+// order of yield_order() (who goes first in each conflicting pair), for k <= kEnumeratedPairs;
+// with more pairs its order is drawn (search/guess.h).
 // Without one (detours and yields would be the straight guess), perturbed and
 // perturbed feasible alternate: (index - 1) % 2 = 0: perturbed, 1: perturbed
 // feasible.
@@ -113,6 +116,11 @@ static std::string guess_text(const StartSpec& s) {
   } else if (s.guess == GuessKind::kYield) {
     std::snprintf(buf, sizeof buf, " margin %.2f", s.margin);
     kind += buf;
+    if (!s.yield_order.empty()) {
+      kind += ", order";
+      for (std::size_t q = 0; q < s.yield_order.size(); ++q)
+        kind += (q == 0 ? " " : ",") + std::to_string(s.yield_order[q]);
+    }
   } else if (s.guess == GuessKind::kGiven) {
     std::snprintf(buf, sizeof buf, " (T_f %.6f s)", s.given.seconds);
     kind += " " + s.given.source + buf;
@@ -146,6 +154,39 @@ StartSpec with_guess(StartSpec start, Trajectory trajectory) {
   start.guess = GuessKind::kGiven;
   start.given = std::move(trajectory);
   return start;
+}
+
+std::vector<int> yield_order(const Scene& scene, int m) {
+  DISCO_CHECK(m >= 0, "yield starts are counted from 0");
+  const std::vector<Conflict> cs = conflicts(scene);
+  const int k = static_cast<int>(cs.size()), nr = static_cast<int>(scene.robots.size());
+  if (k == 0 || k > kEnumeratedPairs) return {};
+  // The orders of the patterns 0 .. 2^k - 1 that have one (no cycle of precedences).
+  std::vector<std::vector<int>> orders;
+  for (std::uint64_t pattern = 0; pattern < (std::uint64_t{1} << k); ++pattern) {
+    std::vector<int> before(nr, 0);  // how many robots must go before robot r
+    std::vector<std::vector<int>> after(nr);
+    for (int p = 0; p < k; ++p) {
+      const bool swapped = pattern >> p & 1u;
+      const int first = swapped ? cs[p].j : cs[p].i, second = swapped ? cs[p].i : cs[p].j;
+      after[first].push_back(second);
+      ++before[second];
+    }
+    std::vector<int> order;  // Kahn's algorithm, the lowest free index first
+    std::vector<bool> placed(nr, false);
+    for (int n = 0; n < nr; ++n) {
+      int next = -1;
+      for (int r = 0; r < nr && next < 0; ++r)
+        if (!placed[r] && before[r] == 0) next = r;
+      if (next < 0) break;  // a cycle: no order gives this pattern
+      placed[next] = true;
+      order.push_back(next);
+      for (int r : after[next]) --before[r];
+    }
+    if (static_cast<int>(order.size()) == nr) orders.push_back(std::move(order));
+  }
+  DISCO_CHECK(!orders.empty(), "pattern 0 (each pair's lower index first) is acyclic");
+  return orders[static_cast<std::size_t>(m) % orders.size()];
 }
 
 StartSpec make_start(const Scene& scene, std::uint64_t seed, int index,
@@ -215,6 +256,7 @@ StartSpec make_start(const Scene& scene, std::uint64_t seed, int index,
     case kYieldSlot:
       s.guess = GuessKind::kYield;
       s.margin = margin;
+      s.yield_order = yield_order(scene, (index - 1) / 5);
       break;
   }
   return s;

@@ -65,6 +65,8 @@ struct StartSpec {
   double perturbation = 0.0;      // kPerturbed: relative amplitude; kPerturbedFeasible: of the warp
   double T_scale = 1.0;           // kPerturbedFeasible: re-solve horizon / feasible horizon
   double margin = 1.0;            // kYield: clearance multiple kept from higher-priority robots
+  std::vector<int> yield_order;   // kYield: the robots, highest priority first (empty: drawn at
+                                  // random from stream 1, search/guess.h)
   Trajectory given;               // kGiven: the trajectory; the first feasibility horizon is
                                   // (1 + feasibility.guess_slack) times its T_f
   ReductionSettings schedule;     // feasibility horizon factor, reduction rate, grow, shrink, ...
@@ -81,6 +83,14 @@ StartSpec with_guess(StartSpec start, Trajectory trajectory);
 // pairs (2^k patterns: all left, all right, then the mixed ones); with more, the mixed
 // patterns are drawn (stream 2 of the start's generator).
 inline constexpr int kEnumeratedPairs = 3;
+
+// The priority order of the scene's m-th yield start (m = 0, 1, ...), for a scene with at
+// most kEnumeratedPairs conflicting pairs: who goes first in each conflicting pair, pattern
+// by pattern (bit p set: the second robot of pair p first) as detour starts take their
+// sides, skipping the patterns no order can give (a cycle), cyclically; robots ordered by
+// those precedences, ties to the lower index. Empty with more pairs (the order is drawn) or
+// none.
+std::vector<int> yield_order(const Scene& scene, int m);
 
 // The start `index` for `scene` under `seed`, varying the given base settings.
 StartSpec make_start(const Scene& scene, std::uint64_t seed, int index,

@@ -118,8 +118,12 @@ TEST(Homotopy, DetourStartsEnumerateEverySidePatternOfAFewConflictingPairs) {
     const StartSpec s = make_start(scene, 1, index, reduction_settings(settings),
                                    elastic_settings(settings));
     if (s.guess != GuessKind::kDetour) continue;
-    if (detours == 0) EXPECT_EQ(s.detour_side, +1);  // all left first, then all right
-    if (detours == 1) EXPECT_EQ(s.detour_side, -1);
+    if (detours == 0) {  // all left first, then all right
+      EXPECT_EQ(s.detour_side, +1);
+    }
+    if (detours == 1) {
+      EXPECT_EQ(s.detour_side, -1);
+    }
     ++detours;
     patterns.insert(s.detour_pattern);
     classes.insert(homotopy_class(scene, guess_paths(scene, s)).key(scene));

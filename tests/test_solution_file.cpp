@@ -844,7 +844,7 @@ TEST(SolutionFile, ProvenanceNamesTheInputsWithTheirHashesAndTheVersion) {
   const std::string scene = std::string(DISCO_SOURCE_DIR) + "/configs/scenarios/one_robot_axis.yaml";
   Settings settings = Settings::load(default_settings_path());
   settings.apply_override("elastic.zeta=20");
-  const json p = provenance_json({"search", scene, {"steps=20"}, {"scene.steps=20", "elastic.zeta=20"}, 7, 3},
+  const json p = provenance_json({"search", scene, {"steps=20"}, {"scene.steps=20", "elastic.zeta=20"}, 7, 3, ""},
                                  settings);
   EXPECT_EQ(p.at("mode"), "search");
   EXPECT_EQ(p.at("scene_file"), scene);
@@ -858,7 +858,7 @@ TEST(SolutionFile, ProvenanceNamesTheInputsWithTheirHashesAndTheVersion) {
   EXPECT_NE(p.at("settings_sha256"), sha256_hex(Settings::load(default_settings_path()).canonical_text()))
       << "the settings hash is of the settings after the overrides";
   EXPECT_EQ(p.at("version"), disco_version());
-  EXPECT_THROW(provenance_json({"solve", scene + ".missing", {}, {}, 1, 0}, settings), InputError);
+  EXPECT_THROW(provenance_json({"solve", scene + ".missing", {}, {}, 1, 0, ""}, settings), InputError);
 }
 
 }  // namespace

@@ -406,8 +406,11 @@ TEST(Start, YieldingRobotsWaitUntilTheWayIsClear) {
   const double clearance = scene.robots[0].radius + scene.robots[1].radius;
   ASSERT_LT(min_centre_distance(rp, straight, 0, 1), clearance);
   int waited[2] = {0, 0};
-  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
-    const StartSpec s = find_start(scene, GuessKind::kYield, 0, seed);
+  // Under three seeds, the first two yield starts (indices 3 and 8; m = 0 and 1).
+  for (int k = 0; k < 6; ++k) {
+    const StartSpec s = make_start(scene, 1 + k / 2, k % 2 == 0 ? 3 : 8, base_schedule(),
+                                   base_elastic());
+    ASSERT_EQ(s.guess, GuessKind::kYield) << s.describe();
     const Vector z = make_guess(rp, s, T);
     ASSERT_TRUE(all_finite(z));
     EXPECT_GE(min_centre_distance(rp, z, 0, 1), s.margin * clearance * (1 - 1e-3)) << s.describe();
@@ -424,9 +427,47 @@ TEST(Start, YieldingRobotsWaitUntilTheWayIsClear) {
     }
     EXPECT_EQ(waiting, 1) << s.describe();
   }
-  // The random priority order lets each robot go first in some start.
-  EXPECT_GT(waited[0], 0);
-  EXPECT_GT(waited[1], 0);
+  // One conflicting pair: the first yield start lets robot 0 go first (robot 1 waits), the
+  // second robot 1, under every seed.
+  EXPECT_EQ(waited[0], 3);
+  EXPECT_EQ(waited[1], 3);
+}
+
+TEST(Start, YieldStartsTakeEveryOrderOfTheConflictingPairsInTurn) {
+  // One conflicting pair (0, 1): 0 first, then 1 first, then again.
+  const Scene swap = scenario("two_robots_swap_avoid");
+  ASSERT_EQ(conflicts(swap).size(), 1u);
+  EXPECT_EQ(yield_order(swap, 0), (std::vector<int>{0, 1}));
+  EXPECT_EQ(yield_order(swap, 1), (std::vector<int>{1, 0}));
+  EXPECT_EQ(yield_order(swap, 2), (std::vector<int>{0, 1}));
+  // three_robots_contact: east-west (0.4 m apart), east-north (through the origin together)
+  // and west-north (0.4 m) all conflict. Of the 2^3 first-in-each-pair patterns, the two
+  // cyclic ones (0 before 1 before 2 before 0, and its reverse) have no order; the other
+  // six are the six orders of three robots, each once, then the cycle repeats.
+  const Scene three = scenario("three_robots_contact");
+  ASSERT_EQ(conflicts(three).size(), 3u);
+  std::set<std::vector<int>> seen;
+  for (int m = 0; m < 6; ++m) {
+    const std::vector<int> order = yield_order(three, m);
+    ASSERT_EQ(order.size(), 3u);
+    EXPECT_TRUE(std::is_permutation(order.begin(), order.end(), std::vector<int>{0, 1, 2}.begin()));
+    seen.insert(order);
+  }
+  EXPECT_EQ(seen.size(), 6u);
+  EXPECT_EQ(yield_order(three, 6), yield_order(three, 0));
+  // The starts carry them: the m-th yield start (index 3 + 5 m) takes order m, and says so.
+  for (int m = 0; m < 4; ++m) {
+    const StartSpec s = make_start(three, 9, 3 + 5 * m, base_schedule(), base_elastic());
+    ASSERT_EQ(s.guess, GuessKind::kYield);
+    EXPECT_EQ(s.yield_order, yield_order(three, m));
+    EXPECT_NE(s.describe().find(", order "), std::string::npos) << s.describe();
+  }
+  // No conflict, or more than kEnumeratedPairs: none (the order is drawn).
+  EXPECT_TRUE(yield_order(apart_scene(), 0).empty());
+  const Scene a3 = load_scene(std::string(DISCO_SOURCE_DIR) + "/configs/scenarios/paper/A3.yaml");
+  ASSERT_GT(conflicts(a3).size(), static_cast<std::size_t>(kEnumeratedPairs));
+  EXPECT_TRUE(yield_order(a3, 0).empty());
+  EXPECT_TRUE(make_start(a3, 9, 3, base_schedule(), base_elastic()).yield_order.empty());
 }
 
 TEST(Start, DetoursSeparateTheRobotsOnMirrorImageSides) {
