@@ -5,7 +5,9 @@
 
 Solves SCENE (one_robot_axis, 25 steps) with `disco solve`, then checks that plot_snapshots
 - writes SOLUTION.png next to the input by default: a PNG (signature, IHDR) of the documented
-  size, 1200x900 for the overlay of a 1-robot scene;
+  size fitted to the scene's shape: one_robot_axis moves along x only, so its region is
+  far wider than tall and the overlay takes the documented least height, 1200 x (0.3 x 860
+  + 130) = 1200x388, not 1200x900 of mostly white;
 - draws the robot: a fair share of the pixels carry the robot's colour (tab:blue);
 - sizes the panel grid as documented (--panels: 3 columns for 6 snapshots, 2 for 4) and
   honours --size;
@@ -90,14 +92,14 @@ check(r.returncode == 0 and os.path.isfile(sol), f"disco solve wrote {sol} (exit
 if failures:
     sys.exit(1)
 
-# Default output: next to the input, the overlay (1 robot), 1200x900.
+# Default output: next to the input, the overlay (1 robot along a line), 1200x388.
 r = plot(sol)
 png = os.path.join(solve_dir, "solution.png")
 check(r.returncode == 0, f"plot_snapshots exits 0 (got {r.returncode}: {r.stderr.strip()})")
 check(os.path.isfile(png), "default output is solution.png next to the input")
 hdr = png_header(png)
 check(hdr is not None, "the output starts with the PNG signature and an IHDR chunk")
-check(hdr is not None and hdr[:2] == (1200, 900), f"overlay is 1200x900 (got {hdr and hdr[:2]})")
+check(hdr is not None and hdr[:2] == (1200, 388), f"overlay is 1200x388 (got {hdr and hdr[:2]})")
 
 # The robot is drawn: count robot-blue pixels (tab:blue is (31, 119, 180); the disks are
 # shades of it, the background and decorations are white, grey or black).
@@ -112,8 +114,9 @@ if hdr is not None:
                if row[k + 2] - row[k] > 60 and row[k + 2] > row[k + 1])
     check(blue > 0.005 * w * h, f"the robot is drawn: {blue} of {w * h} pixels are robot blue")
 
-# Panels: 3 columns for 6 snapshots (1200x880), 2 columns for 4 (800x880).
-for n, size in ((6, (1200, 880)), (4, (800, 880))):
+# Panels: 3 columns for 6 snapshots, 2 columns for 4; rows 400 x 0.4 = 160 px tall for this
+# flat scene, + 110: 1200x430 and 800x430.
+for n, size in ((6, (1200, 430)), (4, (800, 430))):
     out = os.path.join(WORK, f"panels{n}.png")
     r = plot(sol, "--panels", "--snapshots", str(n), "-o", out)
     hdr = png_header(out)
@@ -130,6 +133,15 @@ bad_cases.append(("no_phi", d, "missing key 'robots[0].phi'"))
 d = json.loads(json.dumps(doc))
 d["robots"][0]["x"] = d["robots"][0]["x"][:-1]
 bad_cases.append(("short_x", d, "'robots[0].x' has 25 entries, expected 26"))
+# A search's best.json (the shape `disco search` writes): the message names its scenes'
+# solution files, to be given instead.
+best_dir = os.path.join(WORK, "search")
+os.makedirs(best_dir, exist_ok=True)
+bad_cases.append(("search/best", {"seed": 1, "scenes": {
+    "one_robot_axis": {"T_f": doc["T_f"], "solution": "best/one_robot_axis.json"},
+    "two": {"T_f": None, "solution": None}}},
+    "a search's best.json, not a solution file: give one of its scenes' "
+    + os.path.join(best_dir, "best", "one_robot_axis.json")))
 for name, d, msg in bad_cases:
     path = os.path.join(WORK, name + ".json")
     with open(path, "w") as f:

@@ -27,6 +27,7 @@ MODE:
   screenshot  scripts/screenshot_report on the page built by `build`: a PNG of the window
               size, not blank, in which the plots' colours appear (the images loaded offline).
 """
+import copy
 import filecmp
 import html.parser
 import json
@@ -339,6 +340,19 @@ def build():
           "NLP solves" in p.facts.get((anchor("one_robot_axis"), "solve"), ""),
           "a solve output: one scene, its plots and solve time, no search plots, "
           "--no-animation honoured")
+    # Its title names the scene (not the folder), its raw data links the solution file (copied
+    # byte for byte), and "found by" says how it was solved, not its status.
+    with open(os.path.join(one, "solution.json"), "rb") as f, \
+            open(os.path.join(one, "report", "data", "solution.json"), "rb") as g:
+        copied = f.read() == g.read()
+    summary = [row["cells"] for row in p.rows if row["section"] == "summary" and row["cells"]
+               and row["cells"][0] == "one_robot_axis"]
+    check("<title>disco solve: one_robot_axis</title>" in open(os.path.join(one, "report", "index.html")).read()
+          and "data/solution.json" in p.refs and copied
+          and summary and summary[0][-1] == "disco solve, start 0"
+          and p.facts.get((anchor("one_robot_axis"), "found by")) == "disco solve, start 0",
+          f"a solve output: titled by its scene, its solution.json under raw data, found by "
+          f"'disco solve, start 0' ({summary[0][-1] if summary else 'no summary row'})")
 
 
 def screenshot():
@@ -356,6 +370,18 @@ def screenshot():
         check(orange > 500, f"the plots appear: the images loaded offline ({orange} orange pixels)")
         top = im.convert("RGB").crop((0, 0, 1280, 120))
         check(not_blank_image(top)[0] > 0.005, "the title is rendered at the top")
+    # The whole page: taller than the window above, its bottom (the footer) drawn, and no
+    # measuring copy left beside the page.
+    full = os.path.join(WORK, "screenshot_full.png")
+    r = run([SHOT, PAGE, "-o", full, "--width", "1280", "--full-page"])
+    check(r.returncode == 0 and os.path.isfile(full), f"--full-page exits 0 ({r.stderr.strip()[-300:]})")
+    if os.path.isfile(full):
+        w, h = Image.open(full).size
+        bottom = Image.open(full).convert("RGB").crop((0, h - 200, w, h))
+        check(w == 1280 and 2400 < h <= 20000 and not_blank_image(bottom)[0] > 0.001,
+              f"--full-page: the whole page, {w}x{h}, its end drawn")
+    leftovers = [f for f in os.listdir(os.path.dirname(PAGE)) if ".measure-" in f]
+    check(not leftovers, f"--full-page leaves no measuring copy ({leftovers})")
     r = run([SHOT, os.path.join(WORK, "no_such_page.html")])
     check(r.returncode == 2 and "no such file" in r.stderr, "a missing page: exit 2")
 
@@ -393,20 +419,51 @@ def plots():
     def same(a, b):
         return len(a) == len(b) and np.allclose(a, b, rtol=0, atol=1e-12)
 
+    def bound(r, k):  # F_max per component; |a_k| F_max along a D_ef 1 robot's force axis a
+        return r["F_max"] * (abs(r["force_axis"][k]) if r["force_dims"] == 1 else 1.0)
+
+    # A panel per component some robot can push in: in forced_contact every robot pushes along
+    # a = (1, 0), so F_y's bound is 0 for all and F_y gets no panel, only a word in the title.
+    comps = [k for k in (0, 1) if any(bound(r, k) > 0 for r in raw["robots"])]
     fig = time_series.plot_controls(sol, None, [])
-    ax_x, ax_y = fig.axes[:2]
-    for ax, key in ((ax_x, "Fx"), (ax_y, "Fy")):
+    data_axes = [ax for ax in fig.axes if stairs(ax)]
+    check(comps == [0] and len(data_axes) == 1 and "F_y ≡ 0" in fig._suptitle.get_text(),
+          f"controls: no F_y panel when no robot can push in y ({len(data_axes)} panels)")
+    for ax, k in zip(data_axes, comps):
+        key = "Fx" if k == 0 else "Fy"
         got = stairs(ax)
         check(len(got) == len(raw["robots"]) and
               all(same(g.values, r[key]) and same(g.edges, grid) for g, r in zip(got, raw["robots"])),
               f"controls: {key} of every robot over the step grid")
-    # The bounds: ±F_max per component; ±|a| F_max along a robot's force axis a (D_ef 1; in
-    # forced_contact a = (1, 0), so F_y's bound is 0).
-    for ax, k in ((ax_x, 0), (ax_y, 1)):
-        want = sorted({round(sg * r["F_max"] * (abs(r["force_axis"][k]) if r["force_dims"] == 1
-                                                 else 1.0), 12)
-                       for r in raw["robots"] for sg in (-1, 1)})
+        want = sorted({round(sg * bound(r, k), 12) for r in raw["robots"] for sg in (-1, 1)})
         check(hlines(ax) == want, f"controls: component {k} dashed at its bounds {want}")
+    # Turned to push along y too (a = (0.6, 0.8)), the F_y panel is back with its bounds.
+    diag = copy.deepcopy(sol)
+    for r in diag["robots"]:
+        r["force_bound"] = [0.6 * r["F_max"], 0.8 * r["F_max"]]
+    fig = time_series.plot_controls(diag, None, [])
+    data_axes = [ax for ax in fig.axes if stairs(ax)]
+    check(len(data_axes) == 2 and hlines(data_axes[1]) == sorted(
+              {round(sg * 0.8 * r["F_max"], 12) for r in raw["robots"] for sg in (-1, 1)}),
+          "controls: with a y component, two panels, F_y dashed at its bounds")
+    # Equal curves do not hide each other: the second robot, given the first one's data, is
+    # drawn dashed and thinner over it, and its label says whose it equals.
+    twin = copy.deepcopy(sol)
+    a, b = twin["robots"][0], twin["robots"][1]
+    for key in ("vx", "vy", "omega", "friction_x", "friction_y"):
+        b[key] = list(a[key])
+    fig = time_series.plot_speeds(twin, None, [])
+    lines = [l for l in fig.axes[0].lines if len(l.get_xdata()) == n + 1]
+    check(len(lines) == 2 and lines[0].get_linestyle() == "-" and lines[1].get_linestyle() != "-"
+          and lines[1].get_linewidth() < lines[0].get_linewidth()
+          and lines[1].get_label() == f"{b['name']} (= {a['name']})",
+          f"speeds: an equal curve is dashed over the first ({[l.get_label() for l in lines]})")
+    fig = time_series.plot_floor_friction(twin, None, [])
+    got = [p for p in fig.axes[0].patches if isinstance(p, StepPatch)]
+    dashed = [l for l in fig.axes[0].lines if l.get_linestyle() == "--"]
+    check(len(got) == 2 and got[1].get_linestyle() != "solid" and got[1].get_label().endswith(f"(= {a['name']})")
+          and dashed and all(l.get_zorder() > max(p.get_zorder() for p in got) for l in dashed),
+          "floor friction: an equal curve dashed; the μ M g line drawn over the data")
 
     fig = time_series.plot_speeds(sol, None, [])
     lines = [l for l in fig.axes[0].lines if len(l.get_xdata()) == n + 1]

@@ -121,6 +121,7 @@ def summary_table(scenes):
         uses_ref |= against == "reference_time"
         found = (f"start {b['start']}: {esc(s['info'].get('best_guess', ''))}"
                  if b.get("start") is not None
+                 else esc(b["solved_by"]) if b.get("solved_by")  # a disco solve output
                  else status_cell(s["info"].get("status", "no certified solution")))
         info = s["info"]
         rows.append(

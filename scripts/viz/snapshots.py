@@ -9,6 +9,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib import patheffects  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
 from viz.solution_file import (all_contacts, bounds, contacts_at,  # noqa: E402
@@ -53,23 +54,50 @@ def draw_disk(ax, x, y, phi, r, color, frac, z, label=None):
     if label is not None:
         # Opposite the orientation line, so the two do not collide.
         lx, ly = x - 0.45 * r * math.cos(phi), y - 0.45 * r * math.sin(phi)
-        ax.text(lx, ly, label, ha="center", va="center", fontsize=7,
+        ax.text(lx, ly, label, ha="center", va="center", fontsize=9,
                 color="black" if frac < 0.75 else "white", zorder=z + 0.002)
 
 
+# A white edge around a target's dashes and cross: they stay visible over a disk of the same
+# colour (a robot at rest on its target, or starting inside it).
+HALO = [patheffects.withStroke(linewidth=3.2, foreground="white")]
+
+
 def draw_target(ax, rob, color):
+    """The robot's target, dashed, in a darker shade of its colour with a white halo, over the
+    disks (zorder 7-9)."""
     (xl, yl), (xh, yh) = rob["target"]
     if None in (xl, yl, xh, yh):
         return False  # free in x or y: nothing sensible to draw
     r = rob["radius"]
+    edge = blend(color, BLACK, 0.35)
     if xl == xh and yl == yh:
-        ax.add_patch(plt.Circle((xl, yl), r, fill=False, ls="--", lw=1.0, edgecolor=color,
-                                zorder=7))
-        ax.plot([xl], [yl], marker="x", ms=7, mew=1.5, color=color, zorder=9)
+        ax.add_patch(plt.Circle((xl, yl), r, fill=False, ls="--", lw=1.4, edgecolor=edge,
+                                zorder=7, path_effects=HALO))
+        ax.plot([xl], [yl], marker="x", ms=7, mew=1.6, color=edge, zorder=9, path_effects=HALO)
     else:
-        ax.add_patch(plt.Rectangle((xl, yl), xh - xl, yh - yl, fill=False, ls="--", lw=1.0,
-                                   edgecolor=color, zorder=7))
+        ax.add_patch(plt.Rectangle((xl, yl), xh - xl, yh - yl, fill=False, ls="--", lw=1.4,
+                                   edgecolor=edge, zorder=7, path_effects=HALO))
     return True
+
+
+# Text sizes in points (at DPI): legible when the report shows a figure at its full width.
+TICK_PT, LABEL_PT, TITLE_PT, LEGEND_PT = 11, 12, 13, 11
+
+
+def data_aspect(sol):
+    """Height over width of the scene's drawn region (viz.solution_file.bounds)."""
+    x0, x1, y0, y1 = bounds(sol)
+    return (y1 - y0) / (x1 - x0)
+
+
+def overlay_size(sol, width=1200):
+    """(width, height) of the overlay: the axes (the figure less the legend at the right and
+    the labels) as tall as the scene's region is at equal scale, between 30 % and 90 % of the
+    axes width; so a scene along a line is a wide, short figure, not a strip in white."""
+    axes_w = width - 340
+    axes_h = min(max(data_aspect(sol) * axes_w, 0.3 * axes_w), 0.9 * axes_w)
+    return width, int(round(axes_h + 130))
 
 
 def title_text(sol, extra, width_px):
@@ -77,8 +105,8 @@ def title_text(sol, extra, width_px):
     lb = "" if sol["lower_bound"] is None else f" (lower bound {sol['lower_bound']:.3f} s)"
     rest = f"{tf}{lb}, status {sol['status']}{extra}"
     one_line = f"{sol['scenario']}: {rest}"
-    # About 8 px per character at 11 pt and 100 dpi; wrap rather than clip.
-    return one_line if 8 * len(one_line) < width_px else f"{sol['scenario']}\n{rest}"
+    # About 9.5 px per character at TITLE_PT = 13 pt and 100 dpi; wrap rather than clip.
+    return one_line if 9.5 * len(one_line) < width_px else f"{sol['scenario']}\n{rest}"
 
 
 def robot_colors(n):
@@ -142,12 +170,12 @@ def overlay(sol, times, thr, size, title_extra):
                                   mfc=blend(grey, WHITE, shade(frac)),
                                   mec=blend(grey, BLACK, 0.15 + 0.35 * frac),
                                   label=f"{k + 1}:  t = {t:.2f} s"))
-    ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=9,
+    ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=LEGEND_PT,
               frameon=False, borderaxespad=0.0)
     finish_axes(ax, sol)
-    ax.set_xlabel("x [m]")
-    ax.set_ylabel("y [m]")
-    ax.set_title(title_text(sol, title_extra, 0.75 * size[0]), fontsize=11)
+    ax.set_xlabel("x [m]", fontsize=LABEL_PT)
+    ax.set_ylabel("y [m]", fontsize=LABEL_PT)
+    ax.set_title(title_text(sol, title_extra, 0.75 * size[0]), fontsize=TITLE_PT)
     return fig
 
 
@@ -158,7 +186,7 @@ def finish_axes(ax, sol):
     ax.set_aspect("equal", adjustable="datalim")
     ax.grid(True, lw=0.4, color="0.85", zorder=0)
     ax.set_axisbelow(True)
-    ax.tick_params(labelsize=8)
+    ax.tick_params(labelsize=TICK_PT)
 
 
 def panel_grid(n):
@@ -198,13 +226,13 @@ def panels(sol, times, thr, size, title_extra):
             any_snap_contact = True
             ax.plot([cx], [cy], ls="none", marker="o", ms=6, mfc="red", mec="black", zorder=10)
         finish_axes(ax, sol)
-        ax.set_title(f"t = {t:.2f} s", fontsize=10)
+        ax.set_title(f"t = {t:.2f} s", fontsize=LABEL_PT)
     for k in range(len(times), rows * cols):
         axes[k // cols][k % cols].set_axis_off()
     handles = legend_handles(sol, colors, any_contact, any_snap_contact)
-    legend_ax.legend(handles=handles, loc="center", ncol=min(len(handles), 8), fontsize=9,
+    legend_ax.legend(handles=handles, loc="center", ncol=min(len(handles), 6), fontsize=LEGEND_PT,
                      frameon=False)
-    fig.suptitle(title_text(sol, title_extra, size[0]), fontsize=11)
+    fig.suptitle(title_text(sol, title_extra, size[0]), fontsize=TITLE_PT)
     return fig
 
 
@@ -220,7 +248,9 @@ def snapshot_times(sol, n=6, times=None):
 
 def draw_snapshots(sol, out, times, use_panels=None, size=None, thr=None):
     """Draws `sol` at `times` into the PNG `out`. use_panels None: panels for 4 or more
-    robots. Without a trajectory, the starts and targets in one axes. Returns (size, panels)."""
+    robots. Without a trajectory, the starts and targets in one axes. size None: 1200 px wide
+    (400 per panel column), as tall as the scene's region needs (overlay_size). Returns
+    (size, panels)."""
     has_traj = sol["T_f"] is not None
     if use_panels is None:
         use_panels = len(sol["robots"]) >= 4
@@ -229,10 +259,12 @@ def draw_snapshots(sol, out, times, use_panels=None, size=None, thr=None):
     thr = default_contact_threshold(sol) if thr is None else thr
     if use_panels:
         cols, rows = panel_grid(len(times))
-        size = size or (400 * cols, 400 * rows + 80)
+        # Panels as tall as the region at equal scale (between 40 % and 100 % of their width).
+        panel_h = int(round(400 * min(max(data_aspect(sol), 0.4), 1.0)))
+        size = size or (400 * cols, panel_h * rows + 110)
         fig = panels(sol, times, thr, size, extra)
     else:
-        size = size or (1200, 900)
+        size = size or overlay_size(sol)
         fig = overlay(sol, times, thr, size, extra)
     save_figure(fig, out)
     return size, use_panels

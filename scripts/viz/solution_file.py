@@ -6,6 +6,7 @@ load(path) raises BadInput with a message naming the key, e.g. "missing key 'rob
 """
 import json
 import math
+import os
 
 class BadInput(Exception):
     pass
@@ -67,6 +68,15 @@ def load(path, full=False):
         raise BadInput(f"not valid JSON: {e}")
     if not isinstance(doc, dict):
         raise BadInput("top level is not an object")
+    if "scenario" not in doc and isinstance(doc.get("scenes"), dict):
+        # A search's best.json: it names the solution files, one per scene.
+        files = [e.get("solution") for e in doc["scenes"].values()
+                 if isinstance(e, dict) and e.get("solution")]
+        where = os.path.dirname(path) or "."
+        raise BadInput("a search's best.json, not a solution file: give one of its scenes' "
+                       + (", ".join(os.path.join(where, f) for f in files[:4])
+                          + (", ..." if len(files) > 4 else "")
+                          if files else "best/SCENE.json files (none of its scenes has one)"))
 
     sol = {"scenario": str(need(doc, "scenario", "")), "status": str(need(doc, "status", ""))}
     sol["T_f"] = number(need(doc, "T_f", ""), "T_f", allow_null=True)

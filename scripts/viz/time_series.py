@@ -16,7 +16,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 from viz.snapshots import DPI, robot_colors, save_figure  # noqa: E402
 
-WIDTH = 900           # pixels
+WIDTH = 1140          # pixels: the report page's text width (viz/report_page.py, main)
 ROW_HEIGHT = 230      # pixels per subplot row
 MAX_PAIR_LINES = 12   # pairs drawn by name; the rest are summarised in the title
 
@@ -32,6 +32,24 @@ def _robots(sol):
     return zip(sol["robots"], robot_colors(len(sol["robots"])))
 
 
+def _same(a, b):
+    """Whether two series would be drawn on top of each other: within 0.3 % of their largest
+    magnitude everywhere, under a pixel of a panel ROW_HEIGHT tall."""
+    scale = max([abs(v) for v in a] + [abs(v) for v in b] + [1e-300])
+    return len(a) == len(b) and all(abs(u - v) <= 3e-3 * scale for u, v in zip(a, b))
+
+
+def _styles(names, series):
+    """Per series: (line width, line style, label suffix). A series that looks the same as an
+    earlier one (_same) is drawn thinner and dashed on top of it, with "(= that one)" in its
+    label, so that both stay visible instead of one hiding the other."""
+    out = []
+    for k, s in enumerate(series):
+        twin = next((names[q] for q in range(k) if _same(series[q], s)), None)
+        out.append((1.3, "-", "") if twin is None else (1.0, (0, (4, 3)), f" (= {twin})"))
+    return out
+
+
 def _note(ax, text):
     """A grey note in the middle of an axes with nothing (or nothing visible) to draw."""
     ax.text(0.5, 0.5, text, transform=ax.transAxes, ha="center", va="center", color="0.4")
@@ -41,7 +59,7 @@ def _figure(rows, title):
     fig, axes = plt.subplots(rows, 1, sharex=True, squeeze=False,
                              figsize=(WIDTH / DPI, (ROW_HEIGHT * rows + 70) / DPI), dpi=DPI,
                              layout="constrained")
-    fig.suptitle(title, fontsize=11)
+    fig.suptitle(title, fontsize=12)
     return fig, [a[0] for a in axes]
 
 
@@ -52,7 +70,8 @@ def _finish(fig, axes, sol, times, out):
     for ax in axes:
         ax.grid(True, lw=0.4, color="0.88")
         ax.set_axisbelow(True)
-        ax.tick_params(labelsize=8)
+        ax.tick_params(labelsize=10)
+        ax.yaxis.label.set_size(11)  # set_ylabel came first
         ax.set_xlim(0.0, sol["T_f"])
         for k, t in enumerate(times):
             ax.axvline(t, color="0.6", lw=0.7, ls=":", zorder=0.5)
@@ -61,29 +80,41 @@ def _finish(fig, axes, sol, times, out):
         top.annotate(str(k + 1), (t, 1.0), xycoords=("data", "axes fraction"),
                      xytext=(0, 2), textcoords="offset points", ha="center", va="bottom",
                      fontsize=7, color="0.4")
-    axes[-1].set_xlabel("t [s]")
+    axes[-1].set_xlabel("t [s]", fontsize=11)
     return save_figure(fig, out)
 
 
 def _legend(ax, ncol=1):
     if ax.get_legend_handles_labels()[0]:
-        ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.005, 1.0), frameon=False,
+        ax.legend(fontsize=10, loc="upper left", bbox_to_anchor=(1.005, 1.0), frameon=False,
                   ncol=ncol, borderaxespad=0.0)
 
 
 def plot_controls(sol, out, times):
     """F_x, F_y [N] per robot; dashed: each component's bound (Appendix A bounds each by F_max;
-    a D_ef = 1 robot pushes f along its unit axis a with |f| <= F_max: |F_x| <= |a_x| F_max)."""
+    a D_ef = 1 robot pushes f along its unit axis a with |f| <= F_max: |F_x| <= |a_x| F_max).
+    A component no robot can push in (every bound 0: robots pushing along x, or along y) gets
+    no panel; the title says so."""
     t = _grid(sol)
-    fig, axes = _figure(2, f"{sol['scenario']}: controls (dashed: the bounds)")
-    for rob, c in _robots(sol):
-        axes[0].stairs(rob["Fx"], t, color=c, lw=1.3, label=rob["name"], baseline=None)
-        axes[1].stairs(rob["Fy"], t, color=c, lw=1.3, baseline=None)
-        for ax, bound in zip(axes, rob["force_bound"]):
-            for v in (-bound, bound):
-                ax.axhline(v, color=c, lw=0.8, ls="--", alpha=0.7)
-    axes[0].set_ylabel("F_x [N]")
-    axes[1].set_ylabel("F_y [N]")
+    comps = [(c, key) for c, key in ((0, "Fx"), (1, "Fy"))
+             if any(rob["force_bound"][c] > 0 or any(rob[key]) for rob in sol["robots"])]
+    comps = comps or [(0, "Fx")]
+    absent = {0: "F_x", 1: "F_y"}[1 - comps[0][0]] if len(comps) == 1 else None
+    fig, axes = _figure(len(comps), f"{sol['scenario']}: controls (dashed: the bounds)"
+                        + (f"; {absent} ≡ 0, no robot can push that way" if absent else ""))
+    names = [rob["name"] for rob in sol["robots"]]
+    for ax, (c, key) in zip(axes, comps):
+        styles = _styles(names, [rob[key] for rob in sol["robots"]])
+        bounds = []
+        for (rob, col), (lw, ls, twin) in zip(_robots(sol), styles):
+            ax.stairs(rob[key], t, color=col, lw=lw, ls=ls, label=rob["name"] + twin,
+                      baseline=None, zorder=2)
+            b = rob["force_bound"][c]
+            if b > 0 and b not in bounds:  # one line per value, over the data
+                bounds.append(b)
+                for v in (-b, b):
+                    ax.axhline(v, color="0.25", lw=0.8, ls="--", zorder=3)
+        ax.set_ylabel(f"F_{'xy'[c]} [N]")
     return _finish(fig, axes, sol, times, out)
 
 
@@ -91,10 +122,13 @@ def plot_speeds(sol, out, times):
     """|v| [m/s] and omega [rad/s] per robot."""
     t = _grid(sol)
     fig, axes = _figure(2, f"{sol['scenario']}: speeds")
-    for rob, c in _robots(sol):
-        axes[0].plot(t, [math.hypot(a, b) for a, b in zip(rob["vx"], rob["vy"])], color=c,
-                     lw=1.3, label=rob["name"])
-        axes[1].plot(t, rob["omega"], color=c, lw=1.3)
+    names = [rob["name"] for rob in sol["robots"]]
+    speeds = [[math.hypot(a, b) for a, b in zip(rob["vx"], rob["vy"])] for rob in sol["robots"]]
+    for (rob, c), v, (lw, ls, twin) in zip(_robots(sol), speeds, _styles(names, speeds)):
+        axes[0].plot(t, v, color=c, lw=lw, ls=ls, label=rob["name"] + twin)
+    omegas = [rob["omega"] for rob in sol["robots"]]
+    for (rob, c), w, (lw, ls, _) in zip(_robots(sol), omegas, _styles(names, omegas)):
+        axes[1].plot(t, w, color=c, lw=lw, ls=ls)
     axes[0].set_ylabel("|v| [m/s]")
     axes[1].set_ylabel("ω [rad/s]")
     if max(abs(w) for rob in sol["robots"] for w in rob["omega"]) < 1e-9:
@@ -104,13 +138,21 @@ def plot_speeds(sol, out, times):
 
 
 def plot_floor_friction(sol, out, times):
-    """|floor friction| [N] per robot; dashed: its largest value mu M g."""
+    """|floor friction| [N] per robot; dashed, drawn over the data (a sliding robot's friction
+    lies on it): its largest value mu M g, one line per value."""
     t = _grid(sol)
     fig, axes = _figure(1, f"{sol['scenario']}: floor friction (dashed: μ M g)")
-    for rob, c in _robots(sol):
-        mag = [math.hypot(a, b) for a, b in zip(rob["friction_x"], rob["friction_y"])]
-        axes[0].stairs(mag, t, color=c, lw=1.3, label=rob["name"], baseline=None)
-        axes[0].axhline(rob["mu"] * rob["mass"] * sol["g"], color=c, lw=0.9, ls="--")
+    names = [rob["name"] for rob in sol["robots"]]
+    mags = [[math.hypot(a, b) for a, b in zip(rob["friction_x"], rob["friction_y"])]
+            for rob in sol["robots"]]
+    limits = []
+    for (rob, c), mag, (lw, ls, twin) in zip(_robots(sol), mags, _styles(names, mags)):
+        axes[0].stairs(mag, t, color=c, lw=lw, ls=ls, label=rob["name"] + twin, baseline=None,
+                       zorder=2)
+        limit = rob["mu"] * rob["mass"] * sol["g"]
+        if all(abs(limit - m) > 1e-12 * limit for m in limits):
+            limits.append(limit)
+            axes[0].axhline(limit, color="0.25", lw=0.8, ls="--", zorder=3)
     axes[0].set_ylabel("|friction| [N]")
     return _finish(fig, axes, sol, times, out)
 
