@@ -55,6 +55,18 @@ def _note(ax, text):
     ax.text(0.5, 0.5, text, transform=ax.transAxes, ha="center", va="center", color="0.4")
 
 
+def _bound_lines(ax, values, both_signs=False):
+    """A dashed line at each distinct positive value (within 1e-12 relative; and at its
+    negative too with both_signs), drawn once and over the data, which lies on a bound
+    wherever it is reached."""
+    drawn = []
+    for v in values:
+        if v > 0 and all(abs(v - d) > 1e-12 * v for d in drawn):
+            drawn.append(v)
+            for y in ((-v, v) if both_signs else (v,)):
+                ax.axhline(y, color="0.25", lw=0.8, ls="--", zorder=3)
+
+
 def _figure(rows, title):
     fig, axes = plt.subplots(rows, 1, sharex=True, squeeze=False,
                              figsize=(WIDTH / DPI, (ROW_HEIGHT * rows + 70) / DPI), dpi=DPI,
@@ -105,15 +117,10 @@ def plot_controls(sol, out, times):
     names = [rob["name"] for rob in sol["robots"]]
     for ax, (c, key) in zip(axes, comps):
         styles = _styles(names, [rob[key] for rob in sol["robots"]])
-        bounds = []
         for (rob, col), (lw, ls, twin) in zip(_robots(sol), styles):
             ax.stairs(rob[key], t, color=col, lw=lw, ls=ls, label=rob["name"] + twin,
                       baseline=None, zorder=2)
-            b = rob["force_bound"][c]
-            if b > 0 and b not in bounds:  # one line per value, over the data
-                bounds.append(b)
-                for v in (-b, b):
-                    ax.axhline(v, color="0.25", lw=0.8, ls="--", zorder=3)
+        _bound_lines(ax, [rob["force_bound"][c] for rob in sol["robots"]], both_signs=True)
         ax.set_ylabel(f"F_{'xy'[c]} [N]")
     return _finish(fig, axes, sol, times, out)
 
@@ -145,14 +152,10 @@ def plot_floor_friction(sol, out, times):
     names = [rob["name"] for rob in sol["robots"]]
     mags = [[math.hypot(a, b) for a, b in zip(rob["friction_x"], rob["friction_y"])]
             for rob in sol["robots"]]
-    limits = []
     for (rob, c), mag, (lw, ls, twin) in zip(_robots(sol), mags, _styles(names, mags)):
         axes[0].stairs(mag, t, color=c, lw=lw, ls=ls, label=rob["name"] + twin, baseline=None,
                        zorder=2)
-        limit = rob["mu"] * rob["mass"] * sol["g"]
-        if all(abs(limit - m) > 1e-12 * limit for m in limits):
-            limits.append(limit)
-            axes[0].axhline(limit, color="0.25", lw=0.8, ls="--", zorder=3)
+    _bound_lines(axes[0], [rob["mu"] * rob["mass"] * sol["g"] for rob in sol["robots"]])
     axes[0].set_ylabel("|friction| [N]")
     return _finish(fig, axes, sol, times, out)
 
