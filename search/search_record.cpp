@@ -30,6 +30,8 @@ SearchRecord::SearchRecord(const SearchPlan& plan, const std::string& out_dir, s
   finished_ = static_cast<int>(done_.size());
   runs_ = std::fopen(runs.c_str(), resumed ? "a" : "w");
   if (runs_ == nullptr) throw InputError(runs + ": cannot open for writing");
+  for (const std::string& line : recovered_) append(line);
+  recovered_.clear();
 }
 
 SearchRecord::~SearchRecord() {
@@ -43,19 +45,31 @@ int SearchRecord::scene_index(const std::string& name) const {
 }
 
 void SearchRecord::record(const StartOutcome& o, const json* solution, double now, double scene_started) {
-  const std::string line = o.to_json().dump() + "\n";
-  std::fputs(line.c_str(), runs_);
-  std::fflush(runs_);
-  ::fsync(fileno(runs_));  // a kill (or a crash) loses no finished start
+  const json line = o.to_json();
   const int s = scene_index(o.scene);
+  // The solution first, then the line: a kill between the two leaves a best/SCENE.json whose
+  // provenance.run is missing from runs.jsonl, and --resume appends it (read_earlier). The
+  // other order would leave a recorded best without its file.
+  if (update(s, o, now, scene_started) && solution != nullptr) {
+    json doc = *solution;
+    doc["provenance"]["run"] = line;
+    write_json_file(best_file(o.scene), doc);
+  }
+  append(line.dump());
   if (s >= 0 && is_final(o, plan_.scenes[s])) {
     ++finished_;
   } else {
     ++cut_short_;
   }
   if (o.status == StartStatus::kInterrupted) ++interrupted_;
-  if (update(s, o, now, scene_started) && solution != nullptr)
-    write_json_file(out_ + "/best/" + o.scene + ".json", *solution);
+}
+
+std::string SearchRecord::best_file(const std::string& scene) const { return out_ + "/best/" + scene + ".json"; }
+
+void SearchRecord::append(const std::string& line) {
+  std::fputs((line + "\n").c_str(), runs_);
+  std::fflush(runs_);
+  ::fsync(fileno(runs_));  // a kill (or a crash) loses no finished start
 }
 
 // Keeps `o` as its start's outcome (it replaces an earlier one: a start cut short and run
@@ -104,6 +118,7 @@ void SearchRecord::read_earlier(const std::string& path, std::uint64_t seed) {
   std::ifstream in(path);
   std::string line;
   int bad = 0;
+  std::set<std::string> lines;  // as to_json() writes them, so that equal lines compare equal
   while (std::getline(in, line)) {
     if (line.empty()) continue;
     try {
@@ -111,10 +126,12 @@ void SearchRecord::read_earlier(const std::string& path, std::uint64_t seed) {
       const int s = scene_index(o.scene);
       if (s < 0 || o.start >= plan_.scenes[s].starts || o.seed != seed) continue;
       update(s, o, 0.0, 0.0);
+      lines.insert(o.to_json().dump());
     } catch (const std::exception&) {
       ++bad;  // e.g. a line cut short by a kill
     }
   }
+  recover_lines(path, seed, lines);
   int again = 0;
   for (const auto& [key, o] : outcomes_) {
     if (is_final(o, plan_.scenes[key.first])) {
@@ -129,6 +146,49 @@ void SearchRecord::read_earlier(const std::string& path, std::uint64_t seed) {
   resumed_ = static_cast<int>(done_.size());
   spdlog::info("resume: {} start(s) already in {}{}", resumed_, path,
                again > 0 ? fmt::format("; {} cut short there run again", again) : "");
+}
+
+// A best/SCENE.json is written before its start's line (record()), so a kill between the two
+// leaves a file whose provenance.run is in no line: that start ended, and its line is
+// appended now (by the constructor, once runs.jsonl is open). Then every scene's recorded
+// best must be the start its file holds; a mismatch is only warned of (it needs a file
+// written before this order, or by hand).
+void SearchRecord::recover_lines(const std::string& path, std::uint64_t seed,
+                                 const std::set<std::string>& lines) {
+  for (std::size_t s = 0; s < plan_.scenes.size(); ++s) {
+    const std::string file = best_file(plan_.scenes[s].scene.name);
+    std::ifstream in(file);
+    if (!in) continue;
+    try {
+      const json doc = json::parse(in);
+      const json* run = doc.contains("provenance") && doc["provenance"].contains("run")
+                            ? &doc["provenance"]["run"] : nullptr;
+      if (run == nullptr || !run->is_object()) continue;
+      const StartOutcome o = StartOutcome::from_json(*run);
+      const std::string text = o.to_json().dump();
+      if (scene_index(o.scene) != static_cast<int>(s) || o.seed != seed ||
+          o.start >= plan_.scenes[s].starts || lines.count(text) != 0)
+        continue;
+      spdlog::warn("resume: {} start {} ended, but a kill came before its line reached {}; the "
+                   "line is taken from {} (provenance.run)", o.scene, o.start, path, file);
+      update(static_cast<int>(s), o, 0.0, 0.0);
+      recovered_.push_back(text);
+    } catch (const std::exception& e) {
+      spdlog::warn("resume: {}: unreadable ({})", file, e.what());
+    }
+  }
+  for (std::size_t s = 0; s < plan_.scenes.size(); ++s) {
+    const Best& b = best_[s];
+    if (b.start < 0) continue;
+    const std::string file = best_file(plan_.scenes[s].scene.name);
+    std::ifstream in(file);
+    const json doc = in ? json::parse(in, nullptr, false) : json();
+    const bool same = doc.is_object() && doc.value("T_f", json()) == json(b.T_f) &&
+                      doc.contains("provenance") && doc["provenance"].value("start", -1) == b.start;
+    if (!same)
+      spdlog::warn("resume: {}'s best in {} is start {} (T_f {:.6f}), but {} does not hold it",
+                   plan_.scenes[s].scene.name, path, b.start, b.T_f, file);
+  }
 }
 
 std::optional<double> SearchRecord::best_T_f(int s) const {

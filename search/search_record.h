@@ -9,7 +9,10 @@
 //                   per scene: the best certified T_f, its start, starts run and solved,
 //                   time to first feasible and to best (from the hand-out of the scene's
 //                   first start); whether a time limit cut the search short;
-//   best/SCENE.json the full solution of the best start (core/model/solution.h).
+//   best/SCENE.json the full solution of the best start (core/model/solution.h), with its
+//                   runs.jsonl line as provenance.run. It is written before that line, so
+//                   a kill between the two leaves the file, and --resume appends the
+//                   missing line from it: a recorded best always has its file.
 //
 // The best of a scene is the smallest certified T_f, ties to the lower start index, so the
 // outcome does not depend on which rank ran what. A start's later line replaces its
@@ -90,6 +93,9 @@ class SearchRecord {
   int scene_index(const std::string& name) const;
   bool update(int s, const StartOutcome& o, double now, double scene_started);
   void read_earlier(const std::string& path, std::uint64_t seed);
+  void recover_lines(const std::string& path, std::uint64_t seed, const std::set<std::string>& lines);
+  std::string best_file(const std::string& scene) const;  // DIR/best/SCENE.json
+  void append(const std::string& line);  // to runs.jsonl, flushed and fsync'ed
 
   const SearchPlan& plan_;
   std::string out_;
@@ -99,6 +105,7 @@ class SearchRecord {
   std::vector<Best> best_;
   std::map<std::pair<int, int>, StartOutcome> outcomes_;  // (scene, start): its latest outcome
   std::set<std::pair<int, int>> done_;
+  std::vector<std::string> recovered_;  // lines read_earlier took from best/SCENE.json
   int finished_ = 0, resumed_ = 0, cut_short_ = 0, interrupted_ = 0;
 };
 

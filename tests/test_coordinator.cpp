@@ -192,6 +192,59 @@ TEST(Coordinator, TiesGoToTheLowerStartAndAResumeSkipsWhatIsFinal) {
   EXPECT_EQ(handed, (std::vector<int>{0, 2}));
 }
 
+// best/SCENE.json is written before its start's runs.jsonl line (search/search_record.h). A
+// kill between the two (here: the last line cut off) leaves the file, and --resume takes
+// the line from the file's provenance.run: the start is neither lost nor run twice, and the
+// recorded best has its file.
+TEST(Coordinator, AKillBetweenABestsFileAndItsLineLosesNeither) {
+  const SearchPlan plan = load_search_plan({config("scenarios/one_robot_axis.yaml")}, 3, 1, {});
+  const std::string dir = fresh_dir("kill_window");
+  const std::string runs = dir + "/runs.jsonl", file = dir + "/best/one_robot_axis.json";
+  auto lines = [&] {
+    std::vector<std::string> v;
+    std::ifstream in(runs);
+    for (std::string line; std::getline(in, line);) v.push_back(line);
+    return v;
+  };
+  {
+    Coordinator c(plan, dir, 1, 0.0, false, false);
+    for (int k : {0, 1}) {  // start 1 (T_f 2) improves on start 0 (T_f 3)
+      const auto t = c.next(0);
+      ASSERT_TRUE(t);
+      ASSERT_EQ(t->start, k);
+      const json solution = {{"T_f", 3.0 - k}, {"provenance", {{"start", k}}}};
+      c.record(StartOutcome::from_json(outcome_message(plan, *t, 3.0 - k)["outcome"]), &solution);
+    }
+  }  // no finish(): as if killed
+  const std::vector<std::string> before = lines();
+  ASSERT_EQ(before.size(), 2u);
+  EXPECT_EQ(json::parse(std::ifstream(file))["provenance"]["run"], json::parse(before[1]))
+      << "the best's file carries its runs.jsonl line";
+  std::ofstream(runs, std::ios::trunc) << before[0] << "\n";  // the kill came before line 2
+
+  Coordinator again(plan, dir, 1, 0.0, true, false);
+  std::vector<int> handed;
+  while (const auto t = again.next(0)) {
+    handed.push_back(t->start);
+    again.record(StartOutcome::from_json(outcome_message(plan, *t, 4.0)["outcome"]), nullptr);
+  }
+  EXPECT_EQ(handed, (std::vector<int>{2})) << "start 1 ended before the kill: not run again";
+  again.finish();
+  const std::vector<std::string> after = lines();
+  ASSERT_EQ(after.size(), 3u);
+  EXPECT_EQ(json::parse(after[1]), json::parse(before[1])) << "the lost line, taken from the file";
+  const json best = json::parse(std::ifstream(dir + "/best.json"));
+  EXPECT_EQ(best["scenes"]["one_robot_axis"]["start"], 1);
+  EXPECT_EQ(best["scenes"]["one_robot_axis"]["T_f"], 2.0);
+  EXPECT_EQ(best["starts_finished"], 3);
+
+  // A second resume finds every line: it appends nothing and runs nothing.
+  Coordinator third(plan, dir, 1, 0.0, true, false);
+  EXPECT_FALSE(third.next(0));
+  third.finish();
+  EXPECT_EQ(lines().size(), 3u);
+}
+
 // The shared incumbent (search/coordinator.h): tasks carry their scene's best, a better one
 // goes to every worker rank running that scene, once; rank 0 reads it directly.
 TEST(CoordinatorIncumbent, ABetterBestGoesToTheWorkersRunningItsSceneOnce) {

@@ -22,7 +22,8 @@
 //     scene: a benchmark entry's `set`, then --set scene.*, without the prefix), overrides (the
 //     command's --set list as given), seed, start, settings_file, settings_sha256 (of
 //     Settings::canonical_text(), after the overrides), version (disco_version()), guess (the
-//     --guess file the start began from, {file, sha256}, or null).
+//     --guess file the start began from, {file, sha256}, or null); a search's best/SCENE.json
+//     adds run (the start's runs.jsonl line, search/search_record.h).
 #pragma once
 
 #include <cstdint>
