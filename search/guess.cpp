@@ -82,6 +82,7 @@ Vector complete_paths(const RobotProblem& problem, const Paths& paths, double le
         f[a] = rb.mass * (q[i][t + 1][vel] - q[i][t][vel]) / h - friction[a];
       }
       const auto& idx = layout.force_indices(i, t);
+      if (rb.force_dims == 0) continue;  // an object: pushed, not driven
       if (rb.force_dims == 2) {
         for (int a = 0; a < 2; ++a) z[idx[a]] = std::clamp(f[a], -rb.force_max, rb.force_max);
       } else {
@@ -151,6 +152,87 @@ void project(const Robot& rb, double& ox, double& oy) {
 }
 
 // The paths with timing warp `warp` (tau -> s) and offsets added by `offset`
+bool position_free(const Robot& rb) {
+  for (int c : {kX, kY})
+    if (std::isfinite(rb.target.lower[c]) || std::isfinite(rb.target.upper[c])) return false;
+  return true;
+}
+
+// Pushers (see the header): robot i pushes object pusher_of[i] (-1: none).
+std::vector<int> pushed_objects(const Scene& scene) {
+  const int n = static_cast<int>(scene.robots.size());
+  std::vector<int> pushes(n, -1);
+  for (int i = 0; i < n; ++i) {
+    const Robot& rb = scene.robots[i];
+    if (rb.object || !position_free(rb)) continue;
+    double nearest = kInf;
+    for (const Pair& p : scene.pairs) {
+      if (p.mode != PairMode::kContact || (p.i != i && p.j != i)) continue;
+      const int o = p.i == i ? p.j : p.i;
+      const Robot& ob = scene.robots[o];
+      if (!ob.object || straight_move(ob).length() == 0.0) continue;
+      const double d = std::hypot(ob.start[kX] - rb.start[kX], ob.start[kY] - rb.start[kY]);
+      if (d < nearest) nearest = d, pushes[i] = o;
+    }
+  }
+  return pushes;
+}
+
+// Robots push the objects they are assigned (pushed_objects): each goes straight to its
+// contact point behind the object (the m-th of k pushers at angle (m - (k - 1) / 2) pi / 4
+// from straight behind), while the object waits, then moves with it, touching.
+void follow_objects(const Scene& scene, Paths& paths) {
+  const int N = scene.steps, n = static_cast<int>(scene.robots.size());
+  const std::vector<int> pushes = pushed_objects(scene);
+  for (int o = 0; o < n; ++o) {
+    std::vector<int> team;
+    for (int i = 0; i < n; ++i)
+      if (pushes[i] == o) team.push_back(i);
+    if (team.empty()) continue;
+    const Robot& ob = scene.robots[o];
+    const StraightMove move = straight_move(ob);
+    const double L = move.length(), ux = (move.to[kX] - move.from[kX]) / L,
+                 uy = (move.to[kY] - move.from[kY]) / L;
+    std::vector<std::array<double, 2>> offset(team.size());
+    double approach = 0.0;  // the largest way to a contact point
+    for (std::size_t m = 0; m < team.size(); ++m) {
+      const Robot& rb = scene.robots[team[m]];
+      const double angle = (static_cast<double>(m) - 0.5 * (team.size() - 1.0)) * kPi / 4.0;
+      const double c = std::cos(angle), sn = std::sin(angle), R = rb.radius + ob.radius;
+      offset[m] = {-R * (c * ux - sn * uy), -R * (sn * ux + c * uy)};
+      approach = std::max(approach, std::hypot(move.from[kX] + offset[m][0] - rb.start[kX],
+                                               move.from[kY] + offset[m][1] - rb.start[kY]));
+    }
+    // The share of the horizon spent reaching the object, in proportion to the ways.
+    const double a = std::min(0.5, approach / (approach + L));
+    const std::vector<Pose> own = paths[o];
+    for (int t = 1; t < N; ++t) {
+      const double tau = static_cast<double>(t) / N;
+      if (tau <= a) {
+        paths[o][t] = own[0];
+      } else {
+        paths[o][t] = pose_at(own, N * (tau - a) / (1.0 - a));
+      }
+      for (std::size_t m = 0; m < team.size(); ++m) {
+        const Robot& rb = scene.robots[team[m]];
+        Pose& q = paths[team[m]][t];
+        if (tau < a) {
+          const double w = smoothstep(tau / a);
+          q[kX] = rb.start[kX] + w * (move.from[kX] + offset[m][0] - rb.start[kX]);
+          q[kY] = rb.start[kY] + w * (move.from[kY] + offset[m][1] - rb.start[kY]);
+        } else {
+          q[kX] = paths[o][t][kX] + offset[m][0];
+          q[kY] = paths[o][t][kY] + offset[m][1];
+        }
+      }
+    }
+    for (std::size_t m = 0; m < team.size(); ++m) {  // the free end: behind the object's target
+      paths[team[m]][N][kX] = move.to[kX] + offset[m][0];
+      paths[team[m]][N][kY] = move.to[kY] + offset[m][1];
+    }
+  }
+}
+
 // (robot, tau, &ox, &oy); the t = N point is the target point.
 template <class Warp, class Offset>
 Paths build_paths(const Scene& scene, Warp&& warp, Offset&& offset) {
@@ -172,6 +254,7 @@ Paths build_paths(const Scene& scene, Warp&& warp, Offset&& offset) {
     }
     paths[i][N] = m.to;
   }
+  follow_objects(scene, paths);
   return paths;
 }
 

@@ -94,6 +94,20 @@ Scene three_contact_scene(int steps = 3) {
   return make_scene("three_contact", steps, {a, b, c}, PairMode::kContact, 0.3);
 }
 
+// A robot pushing two objects (Robot::object: no force unknowns), one of which rubs on the
+// other; every pair in contact mode.
+Scene objects_scene() {
+  Robot a = moving(make_robot("a", 0.5, 1.0, 0.2, 5.0, -1.2, 0.0, 6), 0.0, 0.5, 0.0, 0.1);
+  Robot b = moving(make_robot("b", 0.3, 0.5, 0.3, 0.0, 0.0, 0.1, 5), 0.0, 0.2, 0.1, 0.3);
+  Robot c = moving(make_robot("c", 0.4, 0.7, 0.25, 0.0, 0.8, -0.4, 4), 0.0, -0.1, 0.2, 0.0);
+  for (Robot* o : {&b, &c}) {
+    o->object = true;
+    o->force_dims = 0;
+  }
+  c.target.lower[kX] = c.target.upper[kX] = 2.0;
+  return make_scene("objects", 3, {a, b, c}, PairMode::kContact, 0.3);
+}
+
 struct NamedScene {
   std::string name;
   Scene scene;
@@ -104,7 +118,8 @@ std::vector<NamedScene> small_scenes() {
           {"avoid_pair", avoid_pair_scene()},
           {"diagonal_one_axis", diagonal_scene()},
           {"mu_zero", frictionless_scene()},
-          {"three_contact", three_contact_scene()}};
+          {"three_contact", three_contact_scene()},
+          {"objects", objects_scene()}};
 }
 
 // ------------------------------------------------------------- points ---

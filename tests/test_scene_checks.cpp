@@ -143,5 +143,73 @@ TEST(SceneChecks, EveryShippedSceneThatCanBeSolvedLoads) {
     EXPECT_THROW(load_scene(std::string(DISCO_SOURCE_DIR) + "/configs/stress/" + name), InputError) << name;
 }
 
+// Objects (Robot::object): passive disks listed under `objects`, after the robots.
+std::string objects_text(const std::string& coin_keys, const std::string& extra = "") {
+  return "scenario: s\nsteps: 10\n"
+         "defaults: {radius: 0.5, mass: 1.0, mu: 0.2, force_max: 5.0}\n"
+         "robots:\n"
+         "  - {name: a, start: {x: 0, y: 0}}\n"
+         "objects:\n"
+         "  - name: coin\n"
+         "    radius: 0.3\n" + coin_keys + extra;
+}
+
+TEST(SceneObjects, AnObjectIsAPassiveDiskAfterTheRobotsInAContactPair) {
+  const Scene s = parse_scene(objects_text("    start: {x: 1, y: 0}\n    target: {x: 3}\n",
+                                           "pairs: {mode: avoid, mu: 0.4}\n"),
+                              "s.yaml");
+  ASSERT_EQ(s.robots.size(), 2u);
+  EXPECT_FALSE(s.robots[0].object);
+  const Robot& c = s.robots[1];
+  EXPECT_TRUE(c.object);
+  EXPECT_EQ(c.name, "coin");
+  EXPECT_EQ(c.force_dims, 0);
+  EXPECT_EQ(c.force_max, 0.0) << "defaults' force_max is a robot key";
+  EXPECT_EQ(c.mass, 1.0) << "defaults' other keys apply to objects";
+  EXPECT_EQ(c.radius, 0.3);
+  ASSERT_EQ(s.pairs.size(), 1u);
+  EXPECT_EQ(s.pairs[0].mode, PairMode::kContact) << "a pair with an object is contact, whatever pairs.mode";
+  EXPECT_EQ(s.pairs[0].mu, 0.4);
+  // An override may still make it avoid.
+  const Scene avoid = parse_scene(
+      objects_text("    start: {x: 2, y: 0}\n    target: {x: 2}\n",
+                   "pairs: {overrides: [{robots: [a, coin], mode: avoid}]}\n"),
+      "s.yaml");
+  EXPECT_EQ(avoid.pairs[0].mode, PairMode::kAvoid);
+}
+
+TEST(SceneObjects, BadObjectsAreErrorsNamingFileLineAndKey) {
+  EXPECT_EQ(error_of(objects_text("    force_max: 3\n    start: {x: 1, y: 0}\n")),
+            "s.yaml:9: key 'objects[0].force_max': object 'coin' has no force of its own (an "
+            "object moves only when pushed); remove 'force_max', or list it under 'robots' to "
+            "drive it");
+  EXPECT_EQ(error_of(objects_text("    start: {x: 1, y: 0}\n  - {name: a, start: {x: 5, y: 0}}\n")),
+            "s.yaml:10: key 'objects[1].name': duplicate name 'a' (already used by robots[0])");
+  EXPECT_EQ(error_of(objects_text("    start: {x: 0.6, y: 0}\n    target: {x: 3}\n")),
+            "s.yaml:9: key 'objects[0].start': robot 'a' and object 'coin' overlap at the start: "
+            "centre distance 0.6 < R_i + R_j = 0.8");
+  EXPECT_EQ(error_of("scenario: s\nsteps: 10\nrobots: []\nobjects:\n"
+                     "  - {name: c, radius: 1, mass: 1, mu: 0.1, start: {x: 0, y: 0}, target: {x: 1}}\n"),
+            "s.yaml:3: key 'robots': must list at least one robot");
+  EXPECT_EQ(error_of("scenario: s\nsteps: 10\nrobots:\n"
+                     "  - {name: a, radius: 0.5, mass: 1, mu: 0.2, force_max: 1, start: {x: 0, y: 0}, "
+                     "target: {x: 1}}\n"),
+            "s.yaml:4: key 'robots[0].force_max': robot 'a' is too weak to move: force_max = 1 N "
+            "must exceed mu * mass * gravity = 0.2 * 1 * 9.81 = 1.962 N (a disk with no force of "
+            "its own belongs under 'objects')");
+}
+
+TEST(SceneObjects, AnObjectNothingCanPushStaysAtItsStart) {
+  // An avoid override leaves the coin without a contact pair: it never moves.
+  const std::string avoid = "pairs: {overrides: [{robots: [a, coin], mode: avoid}]}\n";
+  EXPECT_EQ(error_of(objects_text("    start: {x: 2, y: 0}\n    target: {x: 3}\n", avoid)),
+            "s.yaml:10: key 'objects[0].target': unreachable: object 'coin' has no force of its "
+            "own and nothing can push it (no contact pair), so it stays at rest at its start; its "
+            "target needs x = 3, the start has 2");
+  // Its target at its start is fine; so is any target when a robot can push it.
+  EXPECT_EQ(error_of(objects_text("    start: {x: 2, y: 0}\n    target: {x: 2, vx: 0}\n", avoid)), "");
+  EXPECT_EQ(error_of(objects_text("    start: {x: 2, y: 0}\n    target: {x: 3}\n")), "");
+}
+
 }  // namespace
 }  // namespace disco

@@ -337,7 +337,7 @@ TEST(SceneYaml, NotAMapping) {
 
 TEST(SceneYaml, UnknownKeys) {
   expect_error(with("gravity: 9.81", "gravty: 9.81"), 4, "gravty",
-               "allowed: scenario, description, steps, gravity, defaults, robots, pairs");
+               "allowed: scenario, description, steps, gravity, defaults, robots, objects, pairs");
   expect_error(with("    mass: 1.0", "    masss: 1.0"), 10, "robots[0].masss",
                "unknown key (allowed: name, radius, mass");
   expect_error(with("{x: 0, y: 2}", "{x: 0, y: 2, z: 1}"), 19, "robots[1].start.z",
@@ -400,7 +400,7 @@ TEST(SceneYaml, WrongTypes) {
   expect_error(with("  mode: avoid", "  overrides: 5"), 21, "pairs.overrides", "sequence");
   expect_error(with("  mode: avoid", "  mode: sideways"), 21, "pairs.mode", "'avoid' or 'contact'");
   expect_error(with("  mode: avoid", "  overrides:\n    - robots: r1"), 22,
-               "pairs.overrides[0].robots", "two robot names");
+               "pairs.overrides[0].robots", "two robot or object names");
   expect_error(with("scenario: two_robots", "scenario: two robots"), 1, "scenario",
                "letters, digits");
   expect_error(with("name: r2", "name: [r2]"), 14, "robots[1].name", "must be text");
@@ -444,14 +444,14 @@ TEST(SceneYaml, Ranges) {
 
 TEST(SceneYaml, DuplicateRobotName) {
   expect_error(with("name: r2", "name: r1"), 14, "robots[1].name",
-               "duplicate robot name 'r1' (already used by robots[0])");
+               "duplicate name 'r1' (already used by robots[0])");
 }
 
 TEST(SceneYaml, PairOverrideErrors) {
   expect_error(with("  mode: avoid", "  overrides:\n    - robots: [r1, r3]"), 22,
-               "pairs.overrides[0].robots[1]", "unknown robot name 'r3'");
+               "pairs.overrides[0].robots[1]", "unknown robot or object name 'r3'");
   expect_error(with("  mode: avoid", "  overrides:\n    - robots: [r2, r2]"), 22,
-               "pairs.overrides[0].robots", "two distinct robots");
+               "pairs.overrides[0].robots", "two distinct robots or objects");
   expect_error(with("  mode: avoid",
                     "  overrides:\n    - robots: [r1, r2]\n"
                     "    - robots: [r2, r1]\n      mode: contact"),

@@ -89,6 +89,7 @@ Affine Layout::state(int robot, int t, int component) const {
 Affine Layout::force(int robot, int t, int axis) const {
   const Robot& rb = scene_.robots[robot];
   const auto& f = robots_[robot].force[t];
+  if (rb.force_dims == 0) return Affine(0.0);  // an object: no force of its own
   if (rb.force_dims == 2) return Affine::variable(f[axis]);
   return Affine::variable(f[0], rb.force_axis[axis]);
 }

@@ -55,14 +55,15 @@ class Layout {
   Affine state(int robot, int t, int component) const;
   int state_index(int robot, int t, int component) const;  // -1 where state() is a constant
   bool rotates(int robot) const { return robots_[robot].rotates; }
-  // World-frame control force component (axis 0 = x, 1 = y) over interval t.
+  // World-frame control force component (axis 0 = x, 1 = y) over interval t; the constant 0
+  // for an object (Robot::object: no force unknowns).
   Affine force(int robot, int t, int axis) const;
   bool has_floor_friction(int robot) const { return !robots_[robot].gamma.empty(); }
   Affine beta(int robot, int t, int k) const;
   Affine floor_gamma(int robot, int t) const;
   int beta_index(int robot, int t, int k) const;
   int floor_gamma_index(int robot, int t) const;
-  // Force unknowns of robot i over interval t (1 or 2).
+  // Force unknowns of robot i over interval t (1 or 2; none for an object).
   const std::vector<int>& force_indices(int robot, int t) const { return robots_[robot].force[t]; }
 
   bool has_gap(int pair, int t) const;             // t = 0, or rho^t is an unknown

@@ -6,6 +6,7 @@
 
 #include "core/model/bounds.h"
 #include "core/model/floor_friction.h"
+#include "core/model/model_plan.h"
 #include "core/util/numbers.h"
 
 namespace disco {
@@ -80,10 +81,29 @@ std::optional<double> scene_lower_bound(const Scene& scene) {
   return best;
 }
 
+std::optional<double> pushed_move_time(const Scene& scene, int object) {
+  const Robot& ob = scene.robots[object];
+  const auto m = straight_move_limits(ob, scene.gravity);
+  if (!m) return std::nullopt;
+  if (m->distance == 0.0) return 0.0;
+  const std::vector<int> comp = contact_components(scene);
+  double push = 0.0, mass = ob.mass, friction = m->friction;
+  for (std::size_t r = 0; r < scene.robots.size(); ++r) {
+    const Robot& rb = scene.robots[r];
+    if (rb.object || comp[r] != comp[object]) continue;
+    push += std::sqrt(double(rb.force_dims)) * rb.force_max;
+    mass += rb.mass;
+    friction += rb.mu * rb.mass * scene.gravity;
+  }
+  if (push == 0.0) return std::nullopt;
+  return bang_bang_time(m->distance, (push - friction) / mass, ob.mu * scene.gravity, m->stop_at_end);
+}
+
 std::optional<double> scene_reference_time(const Scene& scene) {
   std::optional<double> best;
-  for (const auto& rb : scene.robots) {
-    const auto t = straight_move_time(rb, scene.gravity);
+  for (int i = 0; i < static_cast<int>(scene.robots.size()); ++i) {
+    const auto t = scene.robots[i].object ? pushed_move_time(scene, i)
+                                          : straight_move_time(scene.robots[i], scene.gravity);
     if (t && std::isfinite(*t)) best = std::max(best.value_or(0.0), *t);
   }
   return best;

@@ -74,6 +74,19 @@ std::optional<MoveLimits> straight_move_limits(const Robot& robot, double gravit
 // directions the relaxation above), absent as straight_move_limits.
 std::optional<double> straight_move_time(const Robot& robot, double gravity);
 std::optional<double> scene_lower_bound(const Scene& scene);
+
+// An object's straight move (Robot::object) as if the robots of its contact component
+// (contact_components, core/model/model_plan.h) pushed it as one body from the start: the
+// sum of their largest pushes against the floor friction of all, over the sum of the
+// masses; after the release it slides to a stop at a_2 = mu g. Exact for one robot already
+// touching one coin on a line (the closed form of tests/test_closed_form.cpp); otherwise
+// not a bound (the robots must first reach it, may push off-centre), a scale. Absent as
+// straight_move_limits, and when no robot can push it.
+std::optional<double> pushed_move_time(const Scene& scene, int object);
+
+// A scale, not a bound: the largest finite straight_move_time over the robots and
+// pushed_move_time over the objects. Objects give the scene no lower bound: they are in
+// contact pairs (see scene_lower_bound), or never move.
 std::optional<double> scene_reference_time(const Scene& scene);
 
 }  // namespace disco

@@ -46,7 +46,8 @@ double largest_speed(const StateBox& box) {
   return std::sqrt(squared);
 }
 
-// Connected components of the graph of contact-mode pairs: a label per robot.
+}  // namespace
+
 std::vector<int> contact_components(const Scene& s) {
   std::vector<int> label(s.robots.size());
   std::iota(label.begin(), label.end(), 0);
@@ -60,8 +61,6 @@ std::vector<int> contact_components(const Scene& s) {
   return label;
 }
 
-}  // namespace
-
 std::vector<std::vector<double>> speed_bounds(const Scene& s, double h) {
   const int N = s.steps, nr = static_cast<int>(s.robots.size());
   const std::vector<int> comp = contact_components(s);
@@ -71,13 +70,15 @@ std::vector<std::vector<double>> speed_bounds(const Scene& s, double h) {
   std::vector<double> G2(nr, 0.0), e2(nr, 0.0);
   auto force_bound = [](const Robot& rb) { return std::sqrt(double(rb.force_dims)) * rb.force_max; };
   // M a = Fbar - mu M g cos(pi / K): the largest net push along the motion.
+  // An object (no force) gets 0: its floor friction only takes energy away.
   auto net_push = [&](const Robot& rb) {
+    if (rb.object) return 0.0;
     return force_bound(rb) - rb.mu * rb.mass * s.gravity * least_dissipation_ratio(rb.friction_edges);
   };
   for (int i = 0; i < nr; ++i) {
     const Robot& rb = s.robots[i];
     const double F = net_push(rb);
-    DISCO_CHECK(F > 0, "F_max > mu M g (the parser's rule)");
+    DISCO_CHECK(F > 0 || rb.object, "F_max > mu M g (the parser's rule)");
     G2[comp[i]] += F * F / rb.mass;
     e2[comp[i]] += rb.mass * (rb.start[kVx] * rb.start[kVx] + rb.start[kVy] * rb.start[kVy]) +
                    rb.inertia * rb.start[kOmega] * rb.start[kOmega];

@@ -24,7 +24,9 @@
 //          =>  |v^{s+1}| <= |v^s| + h a,            a = (Fbar - mu M g c) / M > 0
 //        |v^s| <= |v^{s+1}| + h b,                  b = (Fbar + mu M g) / M
 //    so |v^s| <= u(s) = min(|v^0| + s h a,  V_T + (N - s) h b), V_T the largest
-//    speed in the target velocity box (infinite if unbounded).
+//    speed in the target velocity box (infinite if unbounded). An object (no force,
+//    Robot::object) has Fbar = 0 and a = 0 (friction only slows it): alone, it keeps at
+//    most its start speed; pushed, it takes its share of its component's energy below.
 //    Robots joined by contact pairs (a connected component C of the graph of
 //    contact-mode pairs) exchange impulses, and each impulse dissipates:
 //    normal: c_n^s > 0 only if rho^{s+1} = 0, and with d = p^j - p^i its power
@@ -101,5 +103,9 @@ ModelPlan plan_model(const Scene& scene, bool adaptive, double horizon_max);
 // The speed bounds u(s), s = 0..N, of every robot (item 1 above), for the
 // step h. Exposed for tests.
 std::vector<std::vector<double>> speed_bounds(const Scene& scene, double h);
+
+// Connected components of the graph of contact-mode pairs: a label per disk (robot or
+// object), the same for disks that may push each other, directly or through others.
+std::vector<int> contact_components(const Scene& scene);
 
 }  // namespace disco

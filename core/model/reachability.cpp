@@ -48,7 +48,9 @@ bool polygon_symmetric_about(const Robot& rb, double ux, double uy) {
   return rb.mu == 0.0 || friction_polygon_symmetric_about(rb.friction_edges, ux, uy);
 }
 
-std::string who(const Scene& scene, int r) { return "robot '" + scene.robots[r].name + "'"; }
+std::string who(const Scene& scene, int r) {
+  return (scene.robots[r].object ? "object '" : "robot '") + scene.robots[r].name + "'";
+}
 
 void off_axis(const Scene& scene, int r, std::vector<Unreachable>& out) {
   const Robot& rb = scene.robots[r];
@@ -105,6 +107,26 @@ void no_turn(const Scene& scene, int r, std::vector<Unreachable>& out) {
                    why + ", so omega stays 0; its target needs omega " + interval(lo[kOmega], hi[kOmega])});
 }
 
+void untouched(const Scene& scene, int r, std::vector<Unreachable>& out) {
+  const Robot& rb = scene.robots[r];
+  const State& s = rb.start;
+  if (!rb.object || has_contact_pair(scene, r) || s[kVx] != 0.0 || s[kVy] != 0.0 || s[kOmega] != 0.0)
+    return;
+  const auto& lo = rb.target.lower;
+  const auto& hi = rb.target.upper;
+  for (int c : {kX, kY, kVx, kVy}) {  // phi and omega: no_turn
+    const double v = c < kVx ? s[c] : 0.0;
+    if (!outside(v, {lo[c], hi[c]})) continue;
+    static const char* kNames[kStateSize] = {"x", "y", "phi", "vx", "vy", "omega"};
+    out.push_back({Unreachable::Rule::kUntouched, r, -1,
+                   fmt::format("{} has no force of its own and nothing can push it (no contact "
+                               "pair), so it stays at rest at its start; its target needs {} {}, "
+                               "the start has {:g}",
+                               who(scene, r), kNames[c], interval(lo[c], hi[c]), v)});
+    return;
+  }
+}
+
 void overlap(const Scene& scene, const Pair& p, std::vector<Unreachable>& out) {
   const Robot& a = scene.robots[p.i];
   const Robot& b = scene.robots[p.j];
@@ -119,9 +141,11 @@ void overlap(const Scene& scene, const Pair& p, std::vector<Unreachable>& out) {
   const double needed = clearance(scene, p);
   if (!(farthest < needed * (1.0 - kTol))) return;
   out.push_back({Unreachable::Rule::kOverlap, p.j, p.i,
-                 fmt::format("robots '{}' and '{}' ({} pair): their targets keep their centres at "
+                 fmt::format("{} ({} pair): their targets keep their centres at "
                              "most {:g} m apart, less than R_i + R_j{} = {:g} m",
-                             a.name, b.name, avoid ? "an avoid" : "a contact", farthest,
+                             a.object == b.object ? fmt::format("{} '{}' and '{}'", a.object ? "objects" : "robots", a.name, b.name)
+                                                  : who(scene, p.i) + " and " + who(scene, p.j),
+                             avoid ? "an avoid" : "a contact", farthest,
                              avoid ? " + safe_distance" : "", needed)});
 }
 
@@ -131,6 +155,7 @@ std::vector<Unreachable> unreachable_targets(const Scene& scene) {
   std::vector<Unreachable> out;
   for (int r = 0; r < static_cast<int>(scene.robots.size()); ++r) {
     off_axis(scene, r, out);
+    untouched(scene, r, out);
     no_turn(scene, r, out);
   }
   for (const Pair& p : scene.pairs) overlap(scene, p, out);

@@ -14,6 +14,10 @@
 //    force acts at its centre and the floor's only torque is the damping -sigma_d M g omega,
 //    so omega stays 0 and phi stays at its start. A phi target without the start's phi, or an
 //    omega target without 0, is unreachable.
+//  * kUntouched: an object (Robot::object: no force of its own) with no contact pair, at
+//    rest at the start: no force ever acts on it but floor friction, which only opposes
+//    motion, so it stays where it is. A target box without its start position, or a
+//    velocity box without 0, is unreachable (phi and omega: kNoTurn).
 //  * kOverlap: two robots whose target boxes keep their centres closer than the pair allows
 //    at T_f: R_i + R_j + safe_distance (avoid pair) or R_i + R_j (contact pair).
 // Not covered (the solve reports them as infeasible): anything that depends on the dynamics
@@ -28,7 +32,7 @@
 namespace disco {
 
 struct Unreachable {
-  enum class Rule { kOffAxis, kNoTurn, kOverlap };
+  enum class Rule { kOffAxis, kUntouched, kNoTurn, kOverlap };
   Rule rule;
   int robot = 0;   // the robot whose target is unreachable (for kOverlap, the second robot)
   int other = -1;  // kOverlap: the first robot of the pair

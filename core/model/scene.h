@@ -30,15 +30,21 @@ struct StateBox {
   State upper{kInf, kInf, kInf, kInf, kInf, kInf};
 };
 
+// A disk of the scene: a robot (it pushes with its own force) or, with `object` set, a
+// passive object (a coin: no force of its own, force_dims = 0 and force_max = 0; it slides
+// with floor friction and turns with damping like a robot, and moves only when a robot or
+// another object pushes it through a contact pair). Scene::robots lists the robots first,
+// then the objects; every model family treats both alike, with the force 0 for an object.
 struct Robot {
-  std::string name;         // unique within the scene
+  std::string name;         // unique within the scene (robots and objects together)
+  bool object = false;      // a passive object (scene file: `objects`), not a robot
   double radius = 0;        // R > 0 [m]
   double mass = 0;          // M > 0 [kg]
   double inertia = 0;       // I > 0 [kg m^2]; 0.5 M R^2 (uniform disk) unless given
   double mu = 0;            // floor friction coefficient, >= 0
   double damping = 0;       // sigma_d >= 0 [m s]: floor torque = -sigma_d M g omega
-  double force_max = 0;     // F_max > mu M g [N]: |F_x|, |F_y| <= F_max (infinity norm)
-  int force_dims = 2;       // D_ef: 1 (force along force_axis only) or 2
+  double force_max = 0;     // F_max > mu M g [N]: |F_x|, |F_y| <= F_max (infinity norm); 0: object
+  int force_dims = 2;       // D_ef: 1 (force along force_axis only) or 2; 0: an object
   std::array<double, 2> force_axis{1.0, 0.0};  // unit vector, used when force_dims == 1
   int friction_edges = 16;  // K >= 3: vertices of the floor-friction polygon
   State start{};            // initial state (x, y, phi, vx, vy, omega)
@@ -51,7 +57,7 @@ enum class PairMode {
 };
 
 struct Pair {
-  int i = 0, j = 0;             // robot indices, i < j
+  int i = 0, j = 0;             // indices into Scene::robots (robots or objects), i < j
   PairMode mode = PairMode::kAvoid;
   double safe_distance = 0;     // d_s >= 0 [m] (avoid mode)
   double mu = 0;                // contact friction coefficient >= 0 (contact mode)
@@ -72,8 +78,8 @@ struct Scene {
   int steps = 100;              // N_t >= 1
   KeyOrigin steps_origin;       // where `steps` was given (core/model/model_size.h names it)
   double gravity = 9.81;        // g > 0 [m/s^2]
-  std::vector<Robot> robots;    // at least one
-  std::vector<Pair> pairs;      // exactly one per robot pair (i < j), in (i, j) order
+  std::vector<Robot> robots;    // at least one robot, then the objects (Robot::object)
+  std::vector<Pair> pairs;      // exactly one per pair of disks (i < j), in (i, j) order
 };
 
 }  // namespace disco

@@ -25,14 +25,16 @@ using yaml::is_index;
 using yaml::kOverrideSource;
 using yaml::override_fail;
 
-const std::vector<std::string> kRootKeys = {"scenario", "description", "steps", "gravity",
-                                            "defaults", "robots",      "pairs"};
+const std::vector<std::string> kRootKeys = {"scenario", "description", "steps",  "gravity",
+                                            "defaults", "robots",      "objects", "pairs"};
 // Robot keys that `defaults` may also give, in the order they are read.
 const std::vector<std::string> kFieldKeys = {
     "radius", "mass", "inertia", "mu", "damping", "force_max", "force_dims", "force_axis", "K"};
 const std::vector<std::string> kRobotKeys = {"name",       "radius",  "mass",      "inertia",
                                              "mu",         "damping", "force_max", "force_dims",
                                              "force_axis", "K",       "start",     "target"};
+// What only a robot has: an object (a passive disk) has no force of its own.
+const std::vector<std::string> kForceKeys = {"force_max", "force_dims", "force_axis"};
 const std::vector<std::string> kStateKeys = {"x", "y", "phi", "vx", "vy", "omega"};
 const std::vector<std::string> kPairsKeys = {"mode", "safe_distance", "mu", "overrides"};
 const std::vector<std::string> kPairOverrideKeys = {"robots", "mode", "safe_distance", "mu"};
@@ -303,6 +305,27 @@ struct RobotDraft {
   std::map<std::string, Origin> origin;  // the fields given so far
 };
 
+bool is_force_key(const std::string& key) {
+  return std::find(kForceKeys.begin(), kForceKeys.end(), key) != kForceKeys.end();
+}
+
+// The scene file's `robots` and `objects` sequences, indexed as Scene::robots (robots first).
+struct DiskNodes {
+  YAML::Node robots, objects;
+  std::size_t robot_count = 0;
+  YAML::Node at(std::size_t i) const { return i < robot_count ? robots[i] : objects[i - robot_count]; }
+  std::string path(std::size_t i) const {
+    return i < robot_count ? item("robots", i) : item("objects", i - robot_count);
+  }
+};
+
+// "robots 'a' and 'b'", "objects 'a' and 'b'" or "robot 'a' and object 'b'", for messages.
+std::string both(const Robot& a, const Robot& b) {
+  if (a.object == b.object) return (a.object ? "objects " : "robots ") + quote(a.name) + " and " + quote(b.name);
+  auto who = [](const Robot& r) { return (r.object ? "object " : "robot ") + quote(r.name); };
+  return who(a) + " and " + who(b);
+}
+
 void set_field(const Doc& doc, const std::string& key, const YAML::Node& n, const std::string& path,
                RobotDraft& d) {
   Robot& r = d.robot;
@@ -384,22 +407,31 @@ StateBox read_target(const Doc& doc, const YAML::Node& n, const std::string& pat
   return box;
 }
 
-std::vector<Robot> read_robots(const Doc& doc, const YAML::Node& seq, const YAML::Node& defaults,
-                               double gravity) {
+// The disks of one section, `robots` or (with `object`) `objects`, appended to `disks`:
+// names are unique across both. An object takes the non-force keys of `defaults`; a force
+// key written on an object is an error (it has no force of its own).
+void read_disks(const Doc& doc, const YAML::Node& seq, const std::string& section, bool object,
+                const YAML::Node& defaults, double gravity, std::vector<Robot>& disks) {
   RobotDraft base;
   for (const auto& [key, node] : doc.mapping(defaults, "defaults", kFieldKeys, true)) {
+    if (object && is_force_key(key)) continue;
     set_field(doc, key, node, child("defaults", key), base);
   }
-  if (!seq.IsSequence()) {
-    doc.fail(seq, "robots", "must be a sequence of robots (got " + describe(seq) + ")");
+  if (object) {
+    base.robot.object = true;
+    base.robot.force_max = 0.0;
+    base.robot.force_dims = 0;
   }
-  if (seq.size() == 0) doc.fail(seq, "robots", "must list at least one robot");
+  const std::string what = object ? "objects" : "robots";
+  if (object && seq.IsNull()) return;
+  if (!seq.IsSequence()) {
+    doc.fail(seq, section, "must be a sequence of " + what + " (got " + describe(seq) + ")");
+  }
+  if (!object && seq.size() == 0) doc.fail(seq, section, "must list at least one robot");
 
-  std::vector<Robot> robots;
-  std::map<std::string, std::size_t> index_of;
   for (std::size_t i = 0; i < seq.size(); ++i) {
     const YAML::Node node = seq[i];
-    const std::string path = item("robots", i);
+    const std::string path = item(section, i);
     const auto fields = doc.mapping(node, path, kRobotKeys, false);
     RobotDraft d = base;
     Robot& r = d.robot;
@@ -407,19 +439,28 @@ std::vector<Robot> read_robots(const Doc& doc, const YAML::Node& seq, const YAML
     const auto name_it = fields.find("name");
     if (name_it == fields.end()) doc.fail(node, child(path, "name"), "is required but missing");
     r.name = doc.name(name_it->second, child(path, "name"));
-    if (const auto dup = index_of.find(r.name); dup != index_of.end()) {
+    for (std::size_t k = 0; k < disks.size(); ++k) {
+      if (disks[k].name != r.name) continue;
+      const std::size_t robots = static_cast<std::size_t>(
+          std::count_if(disks.begin(), disks.end(), [](const Robot& x) { return !x.object; }));
       doc.fail(name_it->second, child(path, "name"),
-               "duplicate robot name " + quote(r.name) + " (already used by " +
-                   item("robots", dup->second) + ")");
+               "duplicate name " + quote(r.name) + " (already used by " +
+                   (k < robots ? item("robots", k) : item("objects", k - robots)) + ")");
     }
-    index_of[r.name] = i;
 
     for (const std::string& key : kFieldKeys) {
-      if (const auto it = fields.find(key); it != fields.end()) {
-        set_field(doc, key, it->second, child(path, key), d);
+      const auto it = fields.find(key);
+      if (it == fields.end()) continue;
+      if (object && is_force_key(key)) {
+        doc.fail(it->second, child(path, key),
+                 "object " + quote(r.name) + " has no force of its own (an object moves only when "
+                 "pushed); remove '" + key + "', or list it under 'robots' to drive it");
       }
+      set_field(doc, key, it->second, child(path, key), d);
     }
-    for (const char* key : {"radius", "mass", "mu", "force_max"}) {
+    std::vector<std::string> required = {"radius", "mass", "mu"};
+    if (!object) required.push_back("force_max");
+    for (const std::string& key : required) {
       if (d.origin.count(key) == 0) {
         doc.fail(node, child(path, key), "is required (here or under 'defaults') but missing");
       }
@@ -435,16 +476,16 @@ std::vector<Robot> read_robots(const Doc& doc, const YAML::Node& seq, const YAML
     }
 
     const double resistance = r.mu * r.mass * gravity;
-    if (!(r.force_max > resistance)) {
+    if (!object && !(r.force_max > resistance)) {
       const Origin& o = d.origin.at("force_max");
       doc.fail(o.node, o.path,
                "robot " + quote(r.name) + " is too weak to move: force_max = " + show(r.force_max) +
                    " N must exceed mu * mass * gravity = " + show(r.mu) + " * " + show(r.mass) +
-                   " * " + show(gravity) + " = " + show(resistance) + " N");
+                   " * " + show(gravity) + " = " + show(resistance) +
+                   " N (a disk with no force of its own belongs under 'objects')");
     }
-    robots.push_back(r);
+    disks.push_back(r);
   }
-  return robots;
 }
 
 std::vector<Pair> read_pairs(const Doc& doc, const YAML::Node& n,
@@ -470,6 +511,9 @@ std::vector<Pair> read_pairs(const Doc& doc, const YAML::Node& n,
   for (int i = 0; i < count; ++i) {
     for (int j = i + 1; j < count; ++j) {
       Pair p = base;
+      // A pair with an object is a contact pair unless an override says otherwise: an
+      // object moves only by contact.
+      if (robots[i].object || robots[j].object) p.mode = PairMode::kContact;
       p.i = i;
       p.j = j;
       slot[{i, j}] = pairs.size();
@@ -494,7 +538,8 @@ std::vector<Pair> read_pairs(const Doc& doc, const YAML::Node& n,
     if (r_it == f.end()) doc.fail(entry, rpath, "is required but missing");
     const YAML::Node& names = r_it->second;
     if (!names.IsSequence() || names.size() != 2) {
-      doc.fail(names, rpath, "must be two robot names [a, b] (got " + describe(names) + ")");
+      doc.fail(names, rpath,
+               "must be two robot or object names [a, b] (got " + describe(names) + ")");
     }
     int idx[2];
     for (int e = 0; e < 2; ++e) {
@@ -503,11 +548,11 @@ std::vector<Pair> read_pairs(const Doc& doc, const YAML::Node& n,
       for (int r = 0; r < count; ++r) {
         if (robots[r].name == nm) idx[e] = r;
       }
-      if (idx[e] < 0) doc.fail(names[e], item(rpath, e), "unknown robot name " + quote(nm));
+      if (idx[e] < 0) doc.fail(names[e], item(rpath, e), "unknown robot or object name " + quote(nm));
     }
     if (idx[0] == idx[1]) {
       doc.fail(names, rpath,
-               "a pair needs two distinct robots (got " + quote(robots[idx[0]].name) + " twice)");
+               "a pair needs two distinct robots or objects (got " + quote(robots[idx[0]].name) + " twice)");
     }
     const std::pair<int, int> key{std::min(idx[0], idx[1]), std::max(idx[0], idx[1])};
     if (const auto s = seen.find(key); s != seen.end()) {
@@ -531,15 +576,15 @@ std::vector<Pair> read_pairs(const Doc& doc, const YAML::Node& n,
   return pairs;
 }
 
-void check_start_clearance(const Doc& doc, const YAML::Node& robots_node, const Scene& scene) {
+void check_start_clearance(const Doc& doc, const DiskNodes& nodes, const Scene& scene) {
   for (const Pair& p : scene.pairs) {
     const Robot& a = scene.robots[p.i];
     const Robot& b = scene.robots[p.j];
     const double dist = std::hypot(b.start[kX] - a.start[kX], b.start[kY] - a.start[kY]);
     const double touch = a.radius + b.radius;
-    const std::string path = child(item("robots", p.j), "start");
-    const YAML::Node at = robots_node[p.j]["start"];
-    const std::string names = "robots " + quote(a.name) + " and " + quote(b.name);
+    const std::string path = child(nodes.path(p.j), "start");
+    const YAML::Node at = nodes.at(p.j)["start"];
+    const std::string names = both(a, b);
     if (dist < touch * (1 - kTouchTolerance)) {
       doc.fail(at, path,
                names + " overlap at the start: centre distance " + show(dist) +
@@ -557,17 +602,20 @@ void check_start_clearance(const Doc& doc, const YAML::Node& robots_node, const 
 
 // A scene must ask for something, and nothing it asks for may be out of reach for a reason
 // the scene alone shows (core/model/reachability.h).
-void check_targets(const Doc& doc, const YAML::Node& robots_node, const Scene& scene) {
+void check_targets(const Doc& doc, const DiskNodes& nodes, const Scene& scene) {
   if (!has_any_target(scene))
-    doc.fail(robots_node, "robots",
-             "no robot has a target (every target is missing or unbounded), so there is nothing "
-             "to reach and T_f would be 0; give at least one robot a target");
+    doc.fail(nodes.robots, "robots",
+             nodes.robot_count == scene.robots.size()
+                 ? "no robot has a target (every target is missing or unbounded), so there is "
+                   "nothing to reach and T_f would be 0; give at least one robot a target"
+                 : "no robot or object has a target (every target is missing or unbounded), so "
+                   "there is nothing to reach and T_f would be 0; give at least one a target");
   const std::vector<Unreachable> bad = unreachable_targets(scene);
   if (bad.empty()) return;
   const Unreachable& u = bad.front();
-  const YAML::Node robot = robots_node[u.robot];
+  const YAML::Node robot = nodes.at(u.robot);
   const YAML::Node target = robot["target"];
-  doc.fail(target.IsDefined() ? target : robot, child(item("robots", u.robot), "target"),
+  doc.fail(target.IsDefined() ? target : robot, child(nodes.path(u.robot), "target"),
            "unreachable: " + u.reason);
 }
 
@@ -596,13 +644,19 @@ Scene validate(const Doc& doc, const YAML::Node& root, const std::string& source
   }
   const auto def_it = fields.find("defaults");
   const YAML::Node defaults = def_it == fields.end() ? YAML::Node() : def_it->second;
-  const YAML::Node& robots_node = required("robots");
-  scene.robots = read_robots(doc, robots_node, defaults, scene.gravity);
+  DiskNodes nodes;
+  nodes.robots = required("robots");
+  read_disks(doc, nodes.robots, "robots", false, defaults, scene.gravity, scene.robots);
+  nodes.robot_count = scene.robots.size();
+  if (const auto it = fields.find("objects"); it != fields.end()) {
+    nodes.objects = it->second;
+    read_disks(doc, nodes.objects, "objects", true, defaults, scene.gravity, scene.robots);
+  }
   const auto pairs_it = fields.find("pairs");
   const YAML::Node pairs = pairs_it == fields.end() ? YAML::Node() : pairs_it->second;
   scene.pairs = read_pairs(doc, pairs, scene.robots);
-  check_start_clearance(doc, robots_node, scene);
-  check_targets(doc, robots_node, scene);
+  check_start_clearance(doc, nodes, scene);
+  check_targets(doc, nodes, scene);
   return scene;
 }
 

@@ -30,12 +30,20 @@
 //                                 # required; x and y required, the others default to 0
 //       target: {x: 10, y: [-0.1, 0.1], vx: 0, vy: 0}
 //                                 # optional (missing = everything free), see below
+//   objects:                      # optional sequence of passive disks (Robot::object): the
+//     - name: coin                #   robot keys without force_max, force_dims, force_axis
+//       radius: 0.3               #   (each an error here; from defaults they are skipped)
+//       mass: 0.5
+//       mu: 0.3
+//       start: {x: 1, y: 0}
+//       target: {x: 3, vx: 0}
 //   pairs:                        # optional mapping
-//     mode: avoid                 # default mode of every pair: avoid | contact; default avoid
+//     mode: avoid                 # default mode of every robot pair: avoid | contact; default
+//                                 #   avoid (a pair with an object is contact by default)
 //     safe_distance: 0.01         # default d_s >= 0 [m], default 0.01 (avoid pairs)
 //     mu: 0.3                     # default contact friction coefficient >= 0, default 0.3
 //     overrides:                  # optional sequence of per-pair settings
-//       - robots: [r1, r2]        # two distinct robot names; each pair at most once
+//       - robots: [r1, r2]        # two distinct robot or object names; each pair at most once
 //         mode: contact           # any of mode / safe_distance / mu
 //
 // Target components: each of x, y, phi, vx, vy, omega is optional.
@@ -44,7 +52,8 @@
 //   [lo, hi]           -> a box; either side may be null (~) for "unbounded on that side";
 //                         lo <= hi is required.
 //
-// Scene::pairs holds exactly one Pair per robot pair i < j, in (i, j) lexicographic
+// Scene::robots holds the robots, then the objects; names are unique across both.
+// Scene::pairs holds exactly one Pair per pair of disks i < j, in (i, j) lexicographic
 // order: the `pairs` defaults first, then the matching entry of `pairs.overrides`.
 //
 // Rules applied on load (each violation is an InputError):
@@ -54,7 +63,8 @@
 //   * the ranges given above;
 //   * robots must not overlap at the start: centre distance >= R_i + R_j (relative tolerance
 //     1e-12, so touching is allowed); avoid pairs need >= R_i + R_j + d_s;
-//   * force_max > mu * mass * gravity for every robot.
+//   * force_max > mu * mass * gravity for every robot;
+//   * an object nothing can push keeps its start (core/model/reachability.h, kUntouched).
 // Optional sections (defaults, pairs, pairs.overrides, target) may be written empty (null).
 //
 // Overrides ("--set" on the command line, without the "scene." prefix) are "KEY=VALUE"

@@ -120,7 +120,7 @@ json solution_json(const RobotProblem& problem, const Vector& z, const SolutionI
       lower.push_back(bound(rb.target.lower[c]));
       upper.push_back(bound(rb.target.upper[c]));
     }
-    json jr = {{"name", rb.name},     {"radius", rb.radius},       {"mass", rb.mass},
+    json jr = {{"name", rb.name},     {"kind", rb.object ? "object" : "robot"}, {"radius", rb.radius},       {"mass", rb.mass},
                {"inertia", rb.inertia}, {"mu", rb.mu},             {"damping", rb.damping},
                {"F_max", rb.force_max}, {"force_dims", rb.force_dims}, {"K", rb.friction_edges},
                {"start", state_json(rb.start)}, {"target", {{"lower", lower}, {"upper", upper}}}};

@@ -7,7 +7,9 @@
 //   model {variables, constraints, complementarity_pairs},
 //   certificate {max_violation, max_complementarity, complementarity_product, units},
 //   timing {wall_s, nlp_solves, iterations},
-//   robots[]: name, radius, mass, inertia, mu, damping, F_max, force_dims, K,
+//   robots[]: name, kind ("robot", or "object": a passive disk, F_max = 0, force_dims = 0,
+//     Fx = Fy = 0; objects follow the robots), radius, mass, inertia, mu, damping, F_max,
+//     force_dims, K,
 //     start[6], target {lower[6], upper[6]} (null where unbounded),
 //     x, y, phi, vx, vy, omega (N_t + 1 values; index 0 = the start),
 //     Fx, Fy, friction_x, friction_y, contact_x, contact_y, contact_torque (N_t values:

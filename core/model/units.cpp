@@ -6,16 +6,18 @@ namespace disco {
 
 Units choose_units(const Scene& scene) {
   double r = 0, m = 0, f = 0;
+  int driven = 0;  // robots (objects have no force)
   for (const auto& rb : scene.robots) {
     r += rb.radius;
     m += rb.mass;
     f += rb.force_max;
+    driven += rb.object ? 0 : 1;
   }
   const double n = static_cast<double>(scene.robots.size());
   Units u;
   u.length = r / n;
   u.mass = m / n;
-  u.time = std::sqrt(u.length * u.mass / (f / n));
+  u.time = std::sqrt(u.length * u.mass / (f / driven));
   return u;
 }
 
