@@ -465,6 +465,46 @@ def plots():
           and dashed and all(l.get_zorder() > max(p.get_zorder() for p in got) for l in dashed),
           "floor friction: an equal curve dashed; the μ M g line drawn over the data")
 
+    # Objects: the second disk made a passive object (kind object, no force) is hatched in the
+    # snapshots and the animation, the robots are not, and the controls leave it out.
+    from viz import snapshots
+    from matplotlib.patches import Circle
+    obj_doc = copy.deepcopy(raw)
+    o = obj_doc["robots"][1]
+    # (radius 0.4, where the robots have 0.5: the drawn disks tell by their radius whose they are)
+    o.update(kind="object", F_max=0.0, force_dims=0, Fx=[0.0] * n, Fy=[0.0] * n, radius=0.4)
+    o.pop("force_axis", None)
+    obj_path = os.path.join(WORK, "object_solution.json")
+    with open(obj_path, "w") as f:
+        json.dump(obj_doc, f)
+    osol = load(obj_path, full=True)
+    check([r["object"] for r in osol["robots"]] == [False, True], "load: kind object read")
+    fig = snapshots.overlay(osol, snapshots.snapshot_times(osol), 0.01, (1200, 600), "")
+    disks = [p for p in fig.axes[0].patches if isinstance(p, Circle) and p.get_fill()]
+    radius = {round(r["radius"], 12): r.get("object", False) for r in osol["robots"]}
+    hatched = [p for p in disks if p.get_hatch()]
+    check(len(set(radius)) == 2 and hatched and len(hatched) < len(disks) and
+          all(bool(p.get_hatch()) == radius[round(p.get_radius(), 12)] for p in disks),
+          f"snapshots: the object's disks hatched, the robot's not ({len(hatched)} of {len(disks)})")
+    legend = [t.get_text() for lg in fig.legends + [ax.get_legend() for ax in fig.axes if ax.get_legend()]
+              for t in lg.get_texts()]
+    check(f"{o['name']} (object)" in legend, f"snapshots: the legend names the object ({legend[:3]})")
+    fig = time_series.plot_controls(osol, None, [])
+    got = [g for ax in fig.axes for g in stairs(ax)]
+    check(len(got) == 1 and same(got[0].values, raw["robots"][0]["Fx"]),
+          f"controls: the object has no curve ({len(got)} curves)")
+    bad = copy.deepcopy(obj_doc)
+    bad["robots"][1]["force_dims"] = 2
+    with open(obj_path, "w") as f:
+        json.dump(bad, f)
+    try:
+        load(obj_path, full=True)
+        refused = ""
+    except Exception as e:  # BadInput
+        refused = str(e)
+    check("'robots[1].force_dims' is 2, expected 0" in refused,
+          f"load: an object with force_dims 2 is refused ({refused!r})")
+
     fig = time_series.plot_speeds(sol, None, [])
     lines = [l for l in fig.axes[0].lines if len(l.get_xdata()) == n + 1]
     check(len(lines) == len(raw["robots"]) and all(

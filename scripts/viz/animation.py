@@ -18,8 +18,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from PIL import Image  # noqa: E402
 
-from viz.snapshots import (BLACK, DPI, WHITE, blend, draw_target, finish_axes,  # noqa: E402
-                           robot_colors)
+from viz.snapshots import (BLACK, DPI, OBJECT_HATCH, WHITE, blend, draw_target,  # noqa: E402
+                           finish_axes, robot_colors)
 from viz.solution_file import contacts_at, default_contact_threshold, state_at  # noqa: E402
 
 
@@ -54,7 +54,8 @@ def write_gif(sol, out, fps=20, max_frames=160, size=(720, 540)):
         draw_target(ax, rob, c)
         trails.append(ax.plot([], [], color=c, lw=1.4, zorder=1.8)[0])
         disk = plt.Circle((0, 0), rob["radius"], facecolor=blend(c, WHITE, 0.35),
-                          edgecolor=blend(c, BLACK, 0.35), lw=1.2, alpha=0.9, zorder=3)
+                          edgecolor=blend(c, BLACK, 0.35), lw=1.2, alpha=0.9, zorder=3,
+                          hatch=OBJECT_HATCH if rob.get("object") else None)
         ax.add_patch(disk)
         disks.append(disk)
         heads.append(ax.plot([], [], color=blend(c, BLACK, 0.35), lw=2.0,

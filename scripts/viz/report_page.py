@@ -107,6 +107,16 @@ def scene_time(s, key):
     return fmt(s["best"].get(key), ".1f")
 
 
+def plural(n, word):
+    return f"{n} {word}{'' if n == 1 else 's'}"
+
+
+def disks_cell(info):
+    """Robots (and objects, when the scene has any) for the summary's 'robots / pairs'."""
+    objects = info.get("objects") or 0
+    return f"{info.get('robots', '–')}" + (f" + {objects} obj." if objects else "")
+
+
 def summary_table(scenes):
     head = ("<tr><th>scene</th><th class=num>robots / pairs</th><th class=num>N_t</th>"
             "<th class=num>T_f [s]</th><th class=num>lower bound [s]</th><th class=num>gap</th>"
@@ -126,7 +136,7 @@ def summary_table(scenes):
         info = s["info"]
         rows.append(
             f'<tr><td><a href="#{anchor(s["name"])}">{esc(s["name"])}</a></td>'
-            f"<td class=num>{info.get('robots', '–')} / {info.get('pairs', '–')}</td>"
+            f"<td class=num>{disks_cell(info)} / {info.get('pairs', '–')}</td>"
             f"<td class=num>{info.get('N_t', '–')}</td>"
             f"<td class=num><b>{fmt(b.get('T_f'), '.6f')}</b></td>"
             f"<td class=num>{fmt(b.get('lower_bound'), '.6f', 'none')}</td>"
@@ -275,7 +285,9 @@ def scene_section(s):
                                f"constraints, {m.get('complementarity_pairs')} "
                                "complementarity pairs"))
     if info.get("robots") is not None:
-        facts.append(("scene", f"{info['robots']} robots, {info['pairs']} pairs "
+        objects = info.get("objects") or 0
+        disks = plural(info["robots"], "robot") + (", " + plural(objects, "object") if objects else "")
+        facts.append(("scene", f"{disks}, {plural(info['pairs'], 'pair')} "
                                f"({esc(info.get('pair_modes', ''))}), N_t = {info['N_t']}"))
     links = [f'<a href="{esc(p)}">{esc(label)}</a>' for label, p in s["links"]]
     if links:

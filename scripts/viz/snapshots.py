@@ -11,6 +11,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib import patheffects  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
+from matplotlib.patches import Patch  # noqa: E402
 
 from viz.solution_file import (all_contacts, bounds, contacts_at,  # noqa: E402
                                default_contact_threshold, state_at)
@@ -44,11 +45,16 @@ def shade(frac):
     return 0.78 * (1 - frac)
 
 
-def draw_disk(ax, x, y, phi, r, color, frac, z, label=None):
+# An object (a passive disk, no force of its own) is hatched, so that it reads apart from the
+# robots at any size and in grey print.
+OBJECT_HATCH = "////"
+
+
+def draw_disk(ax, x, y, phi, r, color, frac, z, label=None, obj=False):
     face = blend(color, WHITE, shade(frac))
     edge = blend(color, BLACK, 0.15 + 0.35 * frac)
     ax.add_patch(plt.Circle((x, y), r, facecolor=face, edgecolor=edge, lw=1.2, alpha=0.8,
-                            zorder=z))
+                            zorder=z, hatch=OBJECT_HATCH if obj else None))
     ax.plot([x, x + r * math.cos(phi)], [y, y + r * math.sin(phi)], color=edge, lw=2.0,
             solid_capstyle="round", zorder=z + 0.001)
     if label is not None:
@@ -115,7 +121,9 @@ def robot_colors(n):
 
 
 def legend_handles(sol, colors, contact_any, contact_snap):
-    hs = [Line2D([], [], color=c, lw=1.5, marker="o", ms=8, mfc=blend(c, WHITE, 0.4), mec=c,
+    hs = [Patch(facecolor=blend(c, WHITE, 0.4), edgecolor=c, hatch=OBJECT_HATCH,
+                label=r["name"] + " (object)") if r.get("object") else
+          Line2D([], [], color=c, lw=1.5, marker="o", ms=8, mfc=blend(c, WHITE, 0.4), mec=c,
                  label=r["name"]) for r, c in zip(sol["robots"], colors)]
     hs.append(Line2D([], [], ls="none", marker="o", ms=4, color="0.2", label="start"))
     hs.append(Line2D([], [], ls="--", marker="x", ms=7, color="0.2", label="target"))
@@ -147,7 +155,8 @@ def overlay(sol, times, thr, size, title_extra):
             frac = k / (n - 1) if n > 1 else 1.0
             poses = [state_at(r, t, h, sol["N_t"]) for r in sol["robots"]]
             for rob, c, (x, y, phi) in zip(sol["robots"], colors, poses):
-                draw_disk(ax, x, y, phi, rob["radius"], c, frac, 2 + 0.01 * k, str(k + 1))
+                draw_disk(ax, x, y, phi, rob["radius"], c, frac, 2 + 0.01 * k, str(k + 1),
+                          obj=rob.get("object", False))
             for (cx, cy) in contacts_at(sol, t, h, thr, poses):
                 any_snap_contact = True
                 ax.plot([cx], [cy], ls="none", marker="o", ms=6, mfc="red", mec="black",
@@ -160,7 +169,7 @@ def overlay(sol, times, thr, size, title_extra):
         anyc = []
         for rob, c in zip(sol["robots"], colors):
             x0, y0, phi0 = rob["start"]
-            draw_disk(ax, x0, y0, phi0, rob["radius"], c, 0.5, 2)
+            draw_disk(ax, x0, y0, phi0, rob["radius"], c, 0.5, 2, obj=rob.get("object", False))
     handles = legend_handles(sol, colors, bool(anyc), any_snap_contact)
     if has_traj:
         grey = (0.35, 0.35, 0.35)
@@ -221,7 +230,7 @@ def panels(sol, times, thr, size, title_extra):
             ax.plot([rob["start"][0]], [rob["start"][1]], marker="o", ms=3,
                     color=blend(c, BLACK, 0.3), zorder=9)
             draw_target(ax, rob, c)
-            draw_disk(ax, x, y, phi, rob["radius"], c, 0.55, 3)
+            draw_disk(ax, x, y, phi, rob["radius"], c, 0.55, 3, obj=rob.get("object", False))
         for (cx, cy) in contacts_at(sol, t, h, thr, poses):
             any_snap_contact = True
             ax.plot([cx], [cy], ls="none", marker="o", ms=6, mfc="red", mec="black", zorder=10)

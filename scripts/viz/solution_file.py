@@ -54,7 +54,8 @@ PAIR_STEPS = ("normal_force", "tangential_force")
 
 def load(path, full=False):
     """The solution file at `path` as plain lists. Always: scenario, status, T_f (None without
-    a trajectory), N_t, lower_bound, robots (name, radius, F_max, start [x, y, phi], target
+    a trajectory), N_t, lower_bound, robots (name, object (kind "object": a passive disk, no
+    force; robots first), radius, F_max, start [x, y, phi], target
     [[x, y] lower, [x, y] upper] with None for free, x, y, phi) and pairs (i, j,
     normal_force). full=True adds g, certificate, model, timing, status_detail, each robot's
     mass, mu, force_bound [bx, by] (|F_x| <= bx, |F_y| <= by), vx, vy, omega and per-step forces, and each pair's mode, safe_distance, mu,
@@ -100,6 +101,10 @@ def load(path, full=False):
                "F_max": number(r.get("F_max", 1.0), f"{w}.F_max") if isinstance(r, dict) else 1.0}
         if rob["radius"] <= 0:
             raise BadInput(f"'{w}.radius' is {rob['radius']}, expected > 0")
+        kind = r.get("kind", "robot") if isinstance(r, dict) else "robot"  # older files: robots
+        if kind not in ("robot", "object"):
+            raise BadInput(f"'{w}.kind' is {json.dumps(kind)}, expected \"robot\" or \"object\"")
+        rob["object"] = kind == "object"
         start = need(r, "start", w)
         if not isinstance(start, list) or len(start) < 3:
             raise BadInput(f"'{w}.start' is not a list [x, y, phi, ...]")
@@ -126,9 +131,11 @@ def load(path, full=False):
                 rob[key] = number(need(r, key, w), f"{w}.{key}")
             # The box of F: +-F_max per component; along the axis for force_dims 1.
             dims = need(r, "force_dims", w)
-            if dims not in (1, 2) or isinstance(dims, bool):
-                raise BadInput(f"'{w}.force_dims' is {json.dumps(dims)}, expected 1 or 2")
-            axis = [1.0, 1.0]
+            allowed = (0,) if rob["object"] else (1, 2)
+            if dims not in allowed or isinstance(dims, bool):
+                raise BadInput(f"'{w}.force_dims' is {json.dumps(dims)}, expected "
+                               + " or ".join(map(str, allowed)))
+            axis = [0.0, 0.0] if dims == 0 else [1.0, 1.0]
             if dims == 1:
                 a = need(r, "force_axis", w)
                 if not isinstance(a, list) or len(a) != 2:
@@ -218,8 +225,10 @@ def all_contacts(sol, thr, until=None):
 
 
 def default_contact_threshold(sol):
-    """A pair is in contact above this normal force [N]: 0.1 % of the robots' mean F_max."""
-    return 1e-3 * sum(r["F_max"] for r in sol["robots"]) / len(sol["robots"])
+    """A pair is in contact above this normal force [N]: 0.1 % of the robots' mean F_max
+    (objects have none)."""
+    robots = [r for r in sol["robots"] if not r.get("object")] or sol["robots"]
+    return 1e-3 * sum(r["F_max"] for r in robots) / len(robots)
 
 
 def bounds(sol):

@@ -106,7 +106,8 @@ def plot_controls(sol, out, times):
     """F_x, F_y [N] per robot; dashed: each component's bound (Appendix A bounds each by F_max;
     a D_ef = 1 robot pushes f along its unit axis a with |f| <= F_max: |F_x| <= |a_x| F_max).
     A component no robot can push in (every bound 0: robots pushing along x, or along y) gets
-    no panel; the title says so."""
+    no panel; the title says so. Objects (no force of their own) are left out."""
+    sol = dict(sol, robots=[r for r in sol["robots"] if not r.get("object")])
     t = _grid(sol)
     comps = [(c, key) for c, key in ((0, "Fx"), (1, "Fy"))
              if any(rob["force_bound"][c] > 0 or any(rob[key]) for rob in sol["robots"])]
