@@ -188,14 +188,17 @@ int solve_checked(const SolveOptions& o, const Settings& settings, const Scene& 
     const double T_max = feasibility_horizon(preview, reduction_settings(settings));
     preview.set_horizon_max(T_max);
     const auto size = preview.size();
-    spdlog::info("scene {} ({}): {} robots, {} pairs, N_t = {}", scene.name, scene.source,
-                 scene.robots.size(), scene.pairs.size(), scene.steps);
+    const auto objects = std::count_if(scene.robots.begin(), scene.robots.end(),
+                                       [](const Robot& r) { return r.object; });
+    spdlog::info("scene {} ({}): {} robots{}, {} pairs, N_t = {}", scene.name, scene.source,
+                 scene.robots.size() - objects, objects ? fmt::format(", {} objects", objects) : "",
+                 scene.pairs.size(), scene.steps);
     spdlog::info("model{}: {} variables, {} constraints, {} complementarity pairs "
                  "(T_f <= {:.4g} s); {} threads",
                  preview.options().adaptive ? " (adaptive)" : "", size.variables, size.constraints,
                  size.complementarity_pairs, T_max, omp_get_max_threads());
     const ModelPlan& plan = preview.plan();
-    spdlog::info("  pairs within reach at {} of {} pair-states; {} of {} robots turn",
+    spdlog::info("  pairs within reach at {} of {} pair-states; {} of {} disks turn",
                  plan.pair_states(), static_cast<int>(scene.pairs.size()) * scene.steps,
                  plan.turning_robots(), static_cast<int>(scene.robots.size()));
     spdlog::info("  memory of a solve: {}; {} = {}", estimate.describe(), kMemoryLimitKey,

@@ -243,7 +243,7 @@ bool check_common_schema(const json& doc, const RobotProblem& problem) {
     const json& jr = doc["robots"][r];
     const Robot& rb = problem.scene().robots[r];
     const std::string w = "robots[" + std::to_string(r) + "]";
-    ok &= has_string(jr, "name", w);
+    ok &= has_string(jr, "name", w) && has_string(jr, "kind", w);
     for (const char* k : {"radius", "mass", "inertia", "mu", "damping", "F_max"}) ok &= has_number(jr, k, w);
     ok &= has_integer(jr, "force_dims", w) && has_integer(jr, "K", w);
     ok &= has_numbers(jr, "start", 6, w);
@@ -257,6 +257,7 @@ bool check_common_schema(const json& doc, const RobotProblem& problem) {
     if (!ok) return false;
     // Same values as the scene (SI).
     EXPECT_EQ(jr["name"].get<std::string>(), rb.name);
+    EXPECT_EQ(jr["kind"].get<std::string>(), rb.object ? "object" : "robot") << w;
     EXPECT_EQ(jr["radius"].get<double>(), rb.radius) << w;
     EXPECT_EQ(jr["mass"].get<double>(), rb.mass) << w;
     EXPECT_EQ(jr["inertia"].get<double>(), rb.inertia) << w;
@@ -361,6 +362,7 @@ bool check_solved_schema(const json& doc) {
 
 struct RobotData {
   std::string name;
+  bool object = false;  // kind "object": a passive disk
   double R, M, I, mu, damping, F_max;
   int dims, K;
   std::vector<double> start, lower, upper;  // lower/upper: +-inf for null
@@ -384,6 +386,7 @@ std::vector<double> numbers(const json& a, double null_value = 0.0) {
 RobotData robot_data(const json& jr) {
   RobotData d;
   d.name = jr["name"];
+  d.object = jr["kind"] == "object";
   d.R = jr["radius"];
   d.M = jr["mass"];
   d.I = jr["inertia"];
@@ -434,10 +437,12 @@ struct Scales {
 
 Scales scales(const std::vector<RobotData>& robots) {
   Scales s{0, 0, 0, 0};
+  const double driven = static_cast<double>(
+      std::count_if(robots.begin(), robots.end(), [](const RobotData& r) { return !r.object; }));
   for (const RobotData& r : robots) {
     s.length += r.R / robots.size();
     s.mass += r.M / robots.size();
-    s.force += r.F_max / robots.size();
+    if (!r.object) s.force += r.F_max / driven;  // objects have none
   }
   s.time = std::sqrt(s.length * s.mass / s.force);
   return s;
@@ -519,7 +524,10 @@ PhysicsSummary check_physics(const json& doc) {
         fric_mag.at_least(wn, mumg * std::cos(std::numbers::pi / d.K), kCert * mumg, w, t);
       }
       // Control bounds.
-      if (d.dims == 2) {
+      if (d.dims == 0) {  // an object: no force at all
+        force.add(d.Fx[t], 1e-12, w + ".Fx", t);  // [N]: written as exact zeros
+        force.add(d.Fy[t], 1e-12, w + ".Fy", t);
+      } else if (d.dims == 2) {
         force.at_most(std::abs(d.Fx[t]), d.F_max, 1e-12 * d.F_max, w + ".Fx", t);
         force.at_most(std::abs(d.Fy[t]), d.F_max, 1e-12 * d.F_max, w + ".Fy", t);
       } else {
@@ -712,6 +720,22 @@ pairs:
   mu: 0.3
 )";
 
+// A robot pushes a coin (an object: no force of its own) into a target box off its line.
+const char* const kObjectScene = R"(
+scenario: push_coin_small
+steps: 15
+robots:
+  - {name: finger, radius: 0.15, mass: 1.0, mu: 0.2, force_max: 6.0, start: {x: -0.45, y: -0.1}}
+objects:
+  - name: coin
+    radius: 0.3
+    mass: 0.5
+    mu: 0.3
+    K: 8
+    start: {x: 0, y: 0}
+    target: {x: [0.9, 1.1], y: [0.1, 0.3], vx: 0, vy: 0}
+)";
+
 // Two robots of different sizes swap places; their straight paths overlap, so
 // one must go round the other while keeping d_s = 0.05.
 const char* const kAvoidScene = R"(
@@ -745,6 +769,28 @@ TEST(SolutionFile, ContactSceneMatchesThePhysicsInSiUnits) {
   print_summary(w, p);
   EXPECT_GT(p.max_normal_force, 1e-3) << "the pusher must push the box: normal force never positive";
   EXPECT_GT(p.moving_steps, 0);
+}
+
+// An object obeys the same laws with F = 0: its momentum changes only by floor friction and
+// contact impulses (check_physics's momentum rows with Fx = Fy = 0), within its friction
+// cone, without penetration; and it moved only because it was pushed.
+TEST(SolutionFile, ObjectSceneMatchesThePhysicsInSiUnits) {
+  const Written w = solve_and_write(kObjectScene, "push_coin_small");
+  ASSERT_TRUE(w.run.solved()) << to_string(w.run.info.status) << " " << w.run.info.detail;
+  ASSERT_TRUE(check_common_schema(w.read, *w.run.problem));
+  ASSERT_TRUE(check_solved_schema(w.read));
+  const json& coin = w.read["robots"][1];
+  EXPECT_EQ(coin["kind"], "object");
+  EXPECT_EQ(coin["F_max"].get<double>(), 0.0);
+  EXPECT_EQ(coin["force_dims"].get<int>(), 0);
+  for (const char* k : {"Fx", "Fy"})
+    for (const json& v : coin[k]) EXPECT_EQ(v.get<double>(), 0.0) << "coin." << k;
+  const PhysicsSummary p = check_physics(w.read);
+  print_summary(w, p);
+  EXPECT_GT(p.max_normal_force, 1e-3) << "the finger must push the coin";
+  double moved = 0.0;
+  for (const json& v : coin["vx"]) moved = std::max(moved, std::abs(v.get<double>()));
+  EXPECT_GT(moved, 0.1) << "the coin slid";
 }
 
 TEST(SolutionFile, AvoidSceneMatchesThePhysicsInSiUnits) {
