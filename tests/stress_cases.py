@@ -78,6 +78,8 @@ CASES = {
                                        "keep their centres at most 0.8 m apart",
                             "why": "avoid pair, targets 0.8 m apart < R+R+d_s"},
     # Unreachable for a reason the checks do not cover: the solve finds no feasible point.
+    "object_at_target": {"outcome": "solved", "why": "an object at rest in its target, off the robot's way (avoid pair): the robot alone"},
+    "heavy_object": {"outcome": "infeasible", "why": "a disk no push can slide: momentum 313 kg m/s needed, 11.3 N T_f available, T_f >= 27.7 s"},
     "spin_short": {"outcome": "infeasible", "why": "a lone robot spinning at the start: damping "
                                                    "stops it 0.025 rad on, short of its phi target"},
     "too_weak": {"outcome": "input_error", "key": "robots[0].force_max", "message": "too weak to move",
@@ -92,7 +94,9 @@ def scene_path(name):
 
 
 def load_scene(name):
-    """The scene as plain data: gravity, steps, robots (defaults merged), pairs."""
+    """The scene as plain data: gravity, steps, robots (defaults merged; then the objects, with
+    object True, force_max 0, force_dims 0 and no force keys from defaults), pairs (a pair
+    with an object is contact unless overridden)."""
     with open(scene_path(name)) as f:
         doc = yaml.safe_load(f)
     defaults = doc.get("defaults") or {}
@@ -103,12 +107,17 @@ def load_scene(name):
         n = math.hypot(ax[0], ax[1])
         rb["force_axis"] = [ax[0] / n, ax[1] / n]
         robots.append(rb)
+    for o in doc.get("objects") or []:
+        plain = {k: v for k, v in defaults.items() if k not in ("force_max", "force_dims", "force_axis")}
+        robots.append({"K": 16, **plain, **o, "object": True, "force_max": 0.0, "force_dims": 0,
+                       "force_axis": [1.0, 0.0]})
     pairs_doc = doc.get("pairs") or {}
     by_name = {r["name"]: i for i, r in enumerate(robots)}
     pairs = {}
     for i in range(len(robots)):
         for j in range(i + 1, len(robots)):
-            pairs[(i, j)] = {"mode": pairs_doc.get("mode", "avoid"),
+            with_object = robots[i].get("object") or robots[j].get("object")
+            pairs[(i, j)] = {"mode": "contact" if with_object else pairs_doc.get("mode", "avoid"),
                              "safe_distance": pairs_doc.get("safe_distance", 0.01)}
     for o in pairs_doc.get("overrides") or []:
         i, j = sorted(by_name[n] for n in o["robots"])
@@ -229,10 +238,13 @@ def mirrored_apart(a, b):
 
 
 def time_unit(scene):
-    """The model's time unit sqrt(L M / F) (core/model/units.h): means of R, M, F_max."""
-    n = len(scene["robots"])
-    mean = lambda k: sum(r[k] for r in scene["robots"]) / n  # noqa: E731
-    return math.sqrt(mean("radius") * mean("mass") / mean("force_max"))
+    """The model's time unit sqrt(L M / F) (core/model/units.h): means of R and M over robots
+    and objects, of F_max over the robots."""
+    def mean(k, rs):
+        return sum(r[k] for r in rs) / len(rs)
+    driven = [r for r in scene["robots"] if not r.get("object")]
+    return math.sqrt(mean("radius", scene["robots"]) * mean("mass", scene["robots"])
+                     / mean("force_max", driven))
 
 
 def expected_T(name):
