@@ -158,34 +158,27 @@ void SearchRecord::recover_lines(const std::string& path, std::uint64_t seed,
   for (std::size_t s = 0; s < plan_.scenes.size(); ++s) {
     const std::string file = best_file(plan_.scenes[s].scene.name);
     std::ifstream in(file);
-    if (!in) continue;
-    try {
-      const json doc = json::parse(in);
-      const json* run = doc.contains("provenance") && doc["provenance"].contains("run")
-                            ? &doc["provenance"]["run"] : nullptr;
-      if (run == nullptr || !run->is_object()) continue;
-      const StartOutcome o = StartOutcome::from_json(*run);
-      const std::string text = o.to_json().dump();
-      if (scene_index(o.scene) != static_cast<int>(s) || o.seed != seed ||
-          o.start >= plan_.scenes[s].starts || lines.count(text) != 0)
-        continue;
-      spdlog::warn("resume: {} start {} ended, but a kill came before its line reached {}; the "
-                   "line is taken from {} (provenance.run)", o.scene, o.start, path, file);
-      update(static_cast<int>(s), o, 0.0, 0.0);
-      recovered_.push_back(text);
-    } catch (const std::exception& e) {
-      spdlog::warn("resume: {}: unreadable ({})", file, e.what());
-    }
-  }
-  for (std::size_t s = 0; s < plan_.scenes.size(); ++s) {
-    const Best& b = best_[s];
-    if (b.start < 0) continue;
-    const std::string file = best_file(plan_.scenes[s].scene.name);
-    std::ifstream in(file);
     const json doc = in ? json::parse(in, nullptr, false) : json();
-    const bool same = doc.is_object() && doc.value("T_f", json()) == json(b.T_f) &&
-                      doc.contains("provenance") && doc["provenance"].value("start", -1) == b.start;
-    if (!same)
+    if (in && doc.is_discarded()) spdlog::warn("resume: {}: not valid JSON", file);
+    const json prov = doc.is_object() ? doc.value("provenance", json::object()) : json::object();
+    if (prov.contains("run") && prov["run"].is_object()) {
+      try {
+        const StartOutcome o = StartOutcome::from_json(prov["run"]);
+        const std::string text = o.to_json().dump();
+        if (scene_index(o.scene) == static_cast<int>(s) && o.seed == seed &&
+            o.start < plan_.scenes[s].starts && lines.count(text) == 0) {
+          spdlog::warn("resume: {} start {} ended, but a kill came before its line reached {}; "
+                       "the line is taken from {} (provenance.run)", o.scene, o.start, path, file);
+          update(static_cast<int>(s), o, 0.0, 0.0);
+          recovered_.push_back(text);
+        }
+      } catch (const std::exception& e) {
+        spdlog::warn("resume: {}: provenance.run unreadable ({})", file, e.what());
+      }
+    }
+    const Best& b = best_[s];
+    if (b.start >= 0 && !(doc.is_object() && doc.value("T_f", json()) == json(b.T_f) &&
+                          prov.value("start", -1) == b.start))
       spdlog::warn("resume: {}'s best in {} is start {} (T_f {:.6f}), but {} does not hold it",
                    plan_.scenes[s].scene.name, path, b.start, b.T_f, file);
   }

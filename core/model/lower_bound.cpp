@@ -91,7 +91,7 @@ std::optional<double> pushed_move_time(const Scene& scene, int object) {
   for (std::size_t r = 0; r < scene.robots.size(); ++r) {
     const Robot& rb = scene.robots[r];
     if (rb.object || comp[r] != comp[object]) continue;
-    push += std::sqrt(double(rb.force_dims)) * rb.force_max;
+    push += rb.push_bound();
     mass += rb.mass;
     friction += rb.mu * rb.mass * scene.gravity;
   }

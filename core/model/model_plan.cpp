@@ -68,12 +68,11 @@ std::vector<std::vector<double>> speed_bounds(const Scene& s, double h) {
   for (int c : comp) ++size[c];
   // Per component: G^2 and the start energy e0^2.
   std::vector<double> G2(nr, 0.0), e2(nr, 0.0);
-  auto force_bound = [](const Robot& rb) { return std::sqrt(double(rb.force_dims)) * rb.force_max; };
   // M a = Fbar - mu M g cos(pi / K): the largest net push along the motion.
   // An object (no force) gets 0: its floor friction only takes energy away.
   auto net_push = [&](const Robot& rb) {
     if (rb.object) return 0.0;
-    return force_bound(rb) - rb.mu * rb.mass * s.gravity * least_dissipation_ratio(rb.friction_edges);
+    return rb.push_bound() - rb.mu * rb.mass * s.gravity * least_dissipation_ratio(rb.friction_edges);
   };
   for (int i = 0; i < nr; ++i) {
     const Robot& rb = s.robots[i];
@@ -98,7 +97,7 @@ std::vector<std::vector<double>> speed_bounds(const Scene& s, double h) {
       for (int t = 0; t <= N; ++t) u[i][t] = energy[comp[i]][t] / std::sqrt(rb.mass);
       continue;
     }
-    const double a = net_push(rb) / rb.mass, b = (force_bound(rb) + rb.mu * rb.mass * s.gravity) / rb.mass;
+    const double a = net_push(rb) / rb.mass, b = (rb.push_bound() + rb.mu * rb.mass * s.gravity) / rb.mass;
     const double v0 = std::hypot(rb.start[kVx], rb.start[kVy]), vT = largest_speed(rb.target);
     for (int t = 0; t <= N; ++t) u[i][t] = std::min(v0 + t * h * a, vT + (N - t) * h * b);
   }

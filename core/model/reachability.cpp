@@ -8,6 +8,7 @@
 
 #include "core/model/floor_friction.h"
 #include "core/model/gap.h"
+#include "core/util/errors.h"
 
 namespace disco {
 namespace {
@@ -48,9 +49,9 @@ bool polygon_symmetric_about(const Robot& rb, double ux, double uy) {
   return rb.mu == 0.0 || friction_polygon_symmetric_about(rb.friction_edges, ux, uy);
 }
 
-std::string who(const Scene& scene, int r) {
-  return (scene.robots[r].object ? "object '" : "robot '") + scene.robots[r].name + "'";
-}
+std::string quoted(const Robot& r) { return "'" + printable(r.name, kEchoLimit) + "'"; }
+
+std::string who(const Scene& scene, int r) { return disk_name(scene.robots[r]); }
 
 void off_axis(const Scene& scene, int r, std::vector<Unreachable>& out) {
   const Robot& rb = scene.robots[r];
@@ -117,12 +118,11 @@ void untouched(const Scene& scene, int r, std::vector<Unreachable>& out) {
   for (int c : {kX, kY, kVx, kVy}) {  // phi and omega: no_turn
     const double v = c < kVx ? s[c] : 0.0;
     if (!outside(v, {lo[c], hi[c]})) continue;
-    static const char* kNames[kStateSize] = {"x", "y", "phi", "vx", "vy", "omega"};
     out.push_back({Unreachable::Rule::kUntouched, r, -1,
                    fmt::format("{} has no force of its own and nothing can push it (no contact "
                                "pair), so it stays at rest at its start; its target needs {} {}, "
                                "the start has {:g}",
-                               who(scene, r), kNames[c], interval(lo[c], hi[c]), v)});
+                               who(scene, r), kStateNames[c], interval(lo[c], hi[c]), v)});
     return;
   }
 }
@@ -143,9 +143,7 @@ void overlap(const Scene& scene, const Pair& p, std::vector<Unreachable>& out) {
   out.push_back({Unreachable::Rule::kOverlap, p.j, p.i,
                  fmt::format("{} ({} pair): their targets keep their centres at "
                              "most {:g} m apart, less than R_i + R_j{} = {:g} m",
-                             a.object == b.object ? fmt::format("{} '{}' and '{}'", a.object ? "objects" : "robots", a.name, b.name)
-                                                  : who(scene, p.i) + " and " + who(scene, p.j),
-                             avoid ? "an avoid" : "a contact", farthest,
+                             disk_pair_names(a, b), avoid ? "an avoid" : "a contact", farthest,
                              avoid ? " + safe_distance" : "", needed)});
 }
 
@@ -160,6 +158,13 @@ std::vector<Unreachable> unreachable_targets(const Scene& scene) {
   }
   for (const Pair& p : scene.pairs) overlap(scene, p, out);
   return out;
+}
+
+std::string disk_name(const Robot& r) { return (r.object ? "object " : "robot ") + quoted(r); }
+
+std::string disk_pair_names(const Robot& a, const Robot& b) {
+  if (a.object != b.object) return disk_name(a) + " and " + disk_name(b);
+  return (a.object ? "objects " : "robots ") + quoted(a) + " and " + quoted(b);
 }
 
 bool has_any_target(const Scene& scene) {

@@ -42,6 +42,11 @@ struct Unreachable {
 // Every unreachable target of `scene`, robots in order, then pairs.
 std::vector<Unreachable> unreachable_targets(const Scene& scene);
 
+// "robot 'a'" or "object 'a'", and "robots 'a' and 'b'", "objects 'a' and 'b'" or "robot 'a'
+// and object 'b'": how messages name disks (names made printable and cut, core/util/errors.h).
+std::string disk_name(const Robot& r);
+std::string disk_pair_names(const Robot& a, const Robot& b);
+
 // True when some robot's target bounds at least one state component.
 bool has_any_target(const Scene& scene);
 

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,6 +20,8 @@ namespace disco {
 // (state arrays, target boxes, solution files).
 enum StateIndex { kX = 0, kY = 1, kPhi = 2, kVx = 3, kVy = 4, kOmega = 5 };
 inline constexpr int kStateSize = 6;
+// Their names, in scene files (start, target) and solution files.
+inline constexpr std::array<const char*, kStateSize> kStateNames = {"x", "y", "phi", "vx", "vy", "omega"};
 using State = std::array<double, kStateSize>;
 
 // A robot's position and orientation (x, y, phi): what a path of a guess gives per state.
@@ -49,6 +52,9 @@ struct Robot {
   int friction_edges = 16;  // K >= 3: vertices of the floor-friction polygon
   State start{};            // initial state (x, y, phi, vx, vy, omega)
   StateBox target;          // terminal box on the state at T_f
+
+  // Fbar = sqrt(D_ef) F_max: the largest |F| the force box allows (its corner); 0 for an object.
+  double push_bound() const { return std::sqrt(static_cast<double>(force_dims)) * force_max; }
 };
 
 enum class PairMode {

@@ -35,7 +35,7 @@ const std::vector<std::string> kRobotKeys = {"name",       "radius",  "mass",   
                                              "force_axis", "K",       "start",     "target"};
 // What only a robot has: an object (a passive disk) has no force of its own.
 const std::vector<std::string> kForceKeys = {"force_max", "force_dims", "force_axis"};
-const std::vector<std::string> kStateKeys = {"x", "y", "phi", "vx", "vy", "omega"};
+const std::vector<std::string> kStateKeys(kStateNames.begin(), kStateNames.end());
 const std::vector<std::string> kPairsKeys = {"mode", "safe_distance", "mu", "overrides"};
 const std::vector<std::string> kPairOverrideKeys = {"robots", "mode", "safe_distance", "mu"};
 
@@ -319,12 +319,6 @@ struct DiskNodes {
   }
 };
 
-// "robots 'a' and 'b'", "objects 'a' and 'b'" or "robot 'a' and object 'b'", for messages.
-std::string both(const Robot& a, const Robot& b) {
-  if (a.object == b.object) return (a.object ? "objects " : "robots ") + quote(a.name) + " and " + quote(b.name);
-  auto who = [](const Robot& r) { return (r.object ? "object " : "robot ") + quote(r.name); };
-  return who(a) + " and " + who(b);
-}
 
 void set_field(const Doc& doc, const std::string& key, const YAML::Node& n, const std::string& path,
                RobotDraft& d) {
@@ -584,7 +578,7 @@ void check_start_clearance(const Doc& doc, const DiskNodes& nodes, const Scene& 
     const double touch = a.radius + b.radius;
     const std::string path = child(nodes.path(p.j), "start");
     const YAML::Node at = nodes.at(p.j)["start"];
-    const std::string names = both(a, b);
+    const std::string names = disk_pair_names(a, b);
     if (dist < touch * (1 - kTouchTolerance)) {
       doc.fail(at, path,
                names + " overlap at the start: centre distance " + show(dist) +

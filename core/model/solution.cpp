@@ -112,7 +112,6 @@ json solution_json(const RobotProblem& problem, const Vector& z, const SolutionI
   }
 
   json robots = json::array();
-  static const char* kNames[kStateSize] = {"x", "y", "phi", "vx", "vy", "omega"};
   for (int i = 0; i < nr; ++i) {
     const Robot& rb = si.robots[i];
     json lower = json::array(), upper = json::array();
@@ -129,7 +128,7 @@ json solution_json(const RobotProblem& problem, const Vector& z, const SolutionI
       for (int c = 0; c < kStateSize; ++c) {
         std::vector<double> v(N + 1);
         for (int t = 0; t <= N; ++t) v[t] = value(L.state(i, t, c)) * unit[c];
-        jr[kNames[c]] = v;
+        jr[kStateNames[c]] = v;
       }
       std::vector<double> fx(N), fy(N), wx(N, 0.0), wy(N, 0.0), cx(N), cy(N), ct(N);
       for (int t = 0; t < N; ++t) {
