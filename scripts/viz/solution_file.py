@@ -224,10 +224,15 @@ def all_contacts(sol, thr, until=None):
     return pts
 
 
+def driven(sol):
+    """The robots of `sol`, without its objects (passive disks: no force of their own)."""
+    return [r for r in sol["robots"] if not r.get("object")]
+
+
 def default_contact_threshold(sol):
     """A pair is in contact above this normal force [N]: 0.1 % of the robots' mean F_max
     (objects have none)."""
-    robots = [r for r in sol["robots"] if not r.get("object")] or sol["robots"]
+    robots = driven(sol)
     return 1e-3 * sum(r["F_max"] for r in robots) / len(robots)
 
 

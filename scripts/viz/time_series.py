@@ -15,6 +15,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 from viz.snapshots import DPI, robot_colors, save_figure  # noqa: E402
+from viz.solution_file import driven  # noqa: E402
 
 WIDTH = 1140          # pixels: the report page's text width (viz/report_page.py, main)
 ROW_HEIGHT = 230      # pixels per subplot row
@@ -107,7 +108,7 @@ def plot_controls(sol, out, times):
     a D_ef = 1 robot pushes f along its unit axis a with |f| <= F_max: |F_x| <= |a_x| F_max).
     A component no robot can push in (every bound 0: robots pushing along x, or along y) gets
     no panel; the title says so. Objects (no force of their own) are left out."""
-    sol = dict(sol, robots=[r for r in sol["robots"] if not r.get("object")])
+    sol = dict(sol, robots=driven(sol))
     t = _grid(sol)
     comps = [(c, key) for c, key in ((0, "Fx"), (1, "Fy"))
              if any(rob["force_bound"][c] > 0 or any(rob[key]) for rob in sol["robots"])]
