@@ -190,16 +190,18 @@ int solve_checked(const SolveOptions& o, const Settings& settings, const Scene& 
     const auto size = preview.size();
     const auto objects = std::count_if(scene.robots.begin(), scene.robots.end(),
                                        [](const Robot& r) { return r.object; });
-    spdlog::info("scene {} ({}): {} robots{}, {} pairs, N_t = {}", scene.name, scene.source,
+    spdlog::info("scene {} ({}): {} robots{}{}, {} pairs, N_t = {}", scene.name, scene.source,
                  scene.robots.size() - objects, objects ? fmt::format(", {} objects", objects) : "",
-                 scene.pairs.size(), scene.steps);
+                 scene.obstacles.empty() ? "" : fmt::format(", {} obstacles", scene.obstacles.size()),
+                 scene.pairs.size() + scene.obstacle_pairs.size(), scene.steps);
     spdlog::info("model{}: {} variables, {} constraints, {} complementarity pairs "
                  "(T_f <= {:.4g} s); {} threads",
                  preview.options().adaptive ? " (adaptive)" : "", size.variables, size.constraints,
                  size.complementarity_pairs, T_max, omp_get_max_threads());
     const ModelPlan& plan = preview.plan();
     spdlog::info("  pairs within reach at {} of {} pair-states; {} of {} disks turn",
-                 plan.pair_states(), static_cast<int>(scene.pairs.size()) * scene.steps,
+                 plan.pair_states(),
+                 static_cast<int>(scene.pairs.size() + scene.obstacle_pairs.size()) * scene.steps,
                  plan.turning_robots(), static_cast<int>(scene.robots.size()));
     spdlog::info("  memory of a solve: {}; {} = {}", estimate.describe(), kMemoryLimitKey,
                  memory_text(memory_limit(settings).bytes));
@@ -244,6 +246,19 @@ int solve_checked(const SolveOptions& o, const Settings& settings, const Scene& 
                  run.solved() ? fmt::format(" (T_f = {:.6f} s, certified)", run.T_f())
                               : " (none: status " + to_string(run.info.status) + ")");
     return interrupted_exit_code();
+  }
+  // The model holds at the states: say so where a disk passed through an obstacle between them.
+  for (const auto& p : doc["obstacle_pairs"]) {
+    if (!p["swept_gap"].is_array()) continue;
+    const auto& g = p["swept_gap"];
+    const auto worst = std::min_element(g.begin(), g.end());
+    const double R = run.problem->scene().robots[p["i"].get<int>()].radius;
+    if (worst == g.end() || *worst >= -1e-6 * R) continue;
+    const auto k = std::distance(g.begin(), worst);
+    spdlog::warn("{} '{}' passes through obstacle '{}' between states {} and {} (overlap {:.3g} m): "
+                 "the model holds at the N_t states only; raise steps",
+                 run.problem->scene().robots[p["i"].get<int>()].object ? "object" : "robot",
+                 p["robot_i"].get<std::string>(), p["obstacle"].get<std::string>(), k, k + 1, -worst->get<double>());
   }
   const auto lb = run.problem->lower_bound();
   if (run.solved()) {

@@ -11,6 +11,7 @@
 #include "core/model/contact_friction.h"
 #include "core/model/floor_friction.h"
 #include "core/model/gap.h"
+#include "core/model/obstacles.h"
 #include "core/model/lower_bound.h"
 #include "core/util/check.h"
 #include "core/util/numbers.h"
@@ -91,8 +92,10 @@ Vector complete_paths(const RobotProblem& problem, const Paths& paths, double le
       }
     }
   }
-  // Gaps from the positions; contact multipliers zero but gamma = |v_T|.
-  for (int p = 0; p < static_cast<int>(s.pairs.size()); ++p) {
+  // Gaps from the positions (a wall's nearest point first); contact multipliers zero but
+  // gamma = |v_T|.
+  complete_wall_projections(layout, z);
+  for (int p = 0; p < layout.num_pairs(); ++p) {
     for (int t = 1; t <= N; ++t)
       if (layout.has_gap(p, t)) z[layout.gap_index(p, t)] = centre_gap(layout, z, p, t);
     if (!layout.has_contact_friction(p)) continue;

@@ -396,6 +396,16 @@ def plots():
     from viz import search_plots, time_series
     from viz.solution_file import load
 
+    def refusal(path, doc):
+        """What load says of `doc` written to `path` ("" if it loads)."""
+        with open(path, "w") as f:
+            json.dump(doc, f)
+        try:
+            load(path, full=True)
+            return ""
+        except Exception as e:  # BadInput
+            return str(e)
+
     with open(os.path.join(SEARCH, "best.json")) as f:
         best = json.load(f)
     with open(os.path.join(SEARCH, "runs.jsonl")) as f:
@@ -495,15 +505,38 @@ def plots():
           f"controls: the object has no curve ({len(got)} curves)")
     bad = copy.deepcopy(obj_doc)
     bad["robots"][1]["force_dims"] = 2
-    with open(obj_path, "w") as f:
-        json.dump(bad, f)
-    try:
-        load(obj_path, full=True)
-        refused = ""
-    except Exception as e:  # BadInput
-        refused = str(e)
+    refused = refusal(obj_path, bad)
     check("'robots[1].force_dims' is 2, expected 0" in refused,
           f"load: an object with force_dims 2 is refused ({refused!r})")
+
+    # Obstacles: a thick wall is a grey capsule, a moving post is drawn where it is at each
+    # snapshot's time, the legend names them, and the drawn region holds the wall's ends.
+    from matplotlib.patches import Polygon
+    obs_doc = copy.deepcopy(raw)
+    far = 40.0  # beyond every robot: only the wall can stretch the region this far
+    obs_doc["obstacles"] = [
+        {"name": "w", "shape": "wall", "radius": 0.1, "from": [far, 0.0], "to": [far, 2.0]},
+        {"name": "p", "shape": "disk", "radius": 0.3, "centre": [0.0, -3.0], "velocity": [0.0, 1.0]}]
+    obs_path = os.path.join(WORK, "obstacle_solution.json")
+    with open(obs_path, "w") as f:
+        json.dump(obs_doc, f)
+    bsol = load(obs_path, full=True)
+    times = snapshots.snapshot_times(bsol)
+    fig = snapshots.overlay(bsol, times, 0.01, (1200, 600), "")
+    ax = fig.axes[0]
+    walls = [p for p in ax.patches if isinstance(p, Polygon) and p.get_facecolor()[:3] == snapshots.OBSTACLE_FACE]
+    xs = [v[0] for p in walls for v in p.get_xy()]
+    check(len(walls) == 1 and abs(min(xs) - (far - 0.1)) < 1e-9 and abs(max(xs) - (far + 0.1)) < 1e-9,
+          f"snapshots: the wall is one capsule {far} +- 0.1 wide ({len(walls)} drawn)")
+    posts = sorted(round(p.center[1], 9) for p in ax.patches if isinstance(p, Circle) and abs(p.get_radius() - 0.3) < 1e-12)
+    check(posts == sorted(round(-3.0 + t, 9) for t in times),
+          f"snapshots: the moving post at each snapshot's time ({posts})")
+    check(ax.get_xlim()[1] >= far + 0.1, f"snapshots: the region holds the wall ({ax.get_xlim()})")
+    legend = [t.get_text() for t in ax.get_legend().get_texts()]
+    check("obstacle" in legend, f"snapshots: the legend names obstacles ({legend})")
+    obs_doc["obstacles"][0]["shape"] = "box"
+    refused = refusal(obs_path, obs_doc)
+    check("'obstacles[0].shape' is \"box\"" in refused, f"load: an unknown shape is refused ({refused!r})")
 
     fig = time_series.plot_speeds(sol, None, [])
     lines = [l for l in fig.axes[0].lines if len(l.get_xdata()) == n + 1]

@@ -26,6 +26,8 @@
 #include "core/config/solver_settings.h"
 #include "core/elastic/elastic_nlp.h"
 #include "core/ipopt/ipopt_solver.h"
+#include "core/model/gap.h"
+#include "core/model/obstacles.h"
 #include "core/model/robot_problem.h"
 #include "core/nlp/derivative_checker.h"
 #include "tests/test_support_derivatives.h"
@@ -108,6 +110,24 @@ Scene objects_scene() {
   return make_scene("objects", 3, {a, b, c}, PairMode::kContact, 0.3);
 }
 
+// A robot and an object among obstacles: a wall and a post in contact (with friction), a
+// moving post and a second wall in avoid mode.
+Scene obstacles_scene() {
+  Robot a = moving(make_robot("a", 0.5, 1.0, 0.2, 5.0, -1.5, 0.0, 6), 0.0, 0.5, 0.0, 0.1);
+  Robot b = moving(make_robot("b", 0.4, 0.8, 0.3, 0.0, 1.5, 0.2, 5), 0.0, -0.3, 0.1, 0.2);
+  b.object = true;
+  b.force_dims = 0;
+  a.target.lower[kX] = a.target.upper[kX] = 1.0;
+  Scene s = make_scene("obstacles", 3, {a, b}, PairMode::kContact, 0.3);
+  model_test::add_obstacle(s, model_test::wall("floor_wall", {-3.0, -1.5}, {3.0, -1.2}, 0.05),
+                           PairMode::kContact, 0.4);
+  model_test::add_obstacle(s, model_test::post("post", {0.0, 1.5}, 0.3), PairMode::kContact, 0.2);
+  model_test::add_obstacle(s, model_test::post("runner", {-3.0, 3.0}, 0.2, {1.0, -0.5}),
+                           PairMode::kAvoid, 0.0, 0.05);
+  model_test::add_obstacle(s, model_test::wall("side_wall", {2.5, -1.0}, {2.5, 2.0}), PairMode::kAvoid);
+  return s;
+}
+
 struct NamedScene {
   std::string name;
   Scene scene;
@@ -119,7 +139,8 @@ std::vector<NamedScene> small_scenes() {
           {"diagonal_one_axis", diagonal_scene()},
           {"mu_zero", frictionless_scene()},
           {"three_contact", three_contact_scene()},
-          {"objects", objects_scene()}};
+          {"objects", objects_scene()},
+          {"obstacles", obstacles_scene()}};
 }
 
 // ------------------------------------------------------------- points ---
@@ -224,6 +245,39 @@ Vector contact_point(const RobotProblem& rp, unsigned seed) {
   return z;
 }
 
+// Every disk at a wall's end (the first wall, alternating ends by state), just past it and
+// 1e-7 from touching, along a direction drawn at random beyond the end: the nearest point
+// is the end itself (s = 0 or 1, a multiplier at its value), where a closed-form distance
+// would switch formulas. Projection unknowns and gaps from the centres, contact forces on.
+Vector wall_end_point(const RobotProblem& rp, unsigned seed) {
+  Vector z = contact_point(rp, seed);
+  std::mt19937 rng(seed + 4000);
+  std::uniform_real_distribution<double> turn(-0.4 * std::numbers::pi, 0.4 * std::numbers::pi);
+  const Layout& L = rp.layout();
+  const Scene& s = L.model_scene();
+  int first_wall = -1;
+  for (int k = 0; k < static_cast<int>(s.obstacles.size()) && first_wall < 0; ++k)
+    if (s.obstacles[k].shape == ObstacleShape::kWall) first_wall = k;
+  if (first_wall < 0) return z;
+  const Obstacle& w = s.obstacles[first_wall];
+  const double dx = w.to[0] - w.from[0], dy = w.to[1] - w.from[1];
+  for (int t = 1; t <= L.steps(); ++t) {
+    const bool far_end = t % 2 == 0;
+    const std::array<double, 2> end = far_end ? w.to : w.from;
+    const double out = std::atan2(far_end ? dy : -dy, far_end ? dx : -dx) + turn(rng);
+    for (int i = 0; i < static_cast<int>(s.robots.size()); ++i) {
+      const double d = s.robots[i].radius + w.radius + 1e-7;
+      put(z, L.state_index(i, t, kX), end[0] + d * std::cos(out));
+      put(z, L.state_index(i, t, kY), end[1] + d * std::sin(out));
+    }
+  }
+  complete_wall_projections(L, z);
+  for (int p = 0; p < L.num_pairs(); ++p)
+    for (int t = 1; t <= L.steps(); ++t)
+      if (L.has_gap(p, t)) put(z, L.gap_index(p, t), centre_gap(L, z, p, t));
+  return z;
+}
+
 Vector random_multipliers(int m, unsigned seed) {
   std::mt19937 rng(seed + 3000);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -265,6 +319,10 @@ void check_all_points(const RobotProblem& rp, unsigned base_seed) {
   {
     SCOPED_TRACE("near contact");
     expect_exact_derivatives(rp, contact_point(rp, base_seed + 9), base_seed + 9);
+  }
+  if (!rp.layout().model_scene().obstacles.empty()) {
+    SCOPED_TRACE("at a wall's ends");
+    expect_exact_derivatives(rp, wall_end_point(rp, base_seed + 13), base_seed + 13);
   }
 }
 

@@ -9,6 +9,7 @@
 #include "core/model/reachability.h"
 #include "core/model/scene_yaml.h"
 #include "core/util/errors.h"
+#include "tests/test_support_messages.h"
 
 namespace disco {
 namespace {
@@ -27,15 +28,8 @@ std::string scene_text(const std::string& robot_keys, const std::string& mode = 
          "pairs: {mode: " + mode + "}\n";
 }
 
-// The InputError message for `text`, or "" if it loads.
-std::string error_of(const std::string& text) {
-  try {
-    parse_scene(text, "s.yaml");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+using test_support::scene_error_of;
+std::string error_of(const std::string& text) { return scene_error_of(text); }
 
 TEST(SceneChecks, ASceneWithNoTargetAtAllIsAnError) {
   const std::string e = error_of(

@@ -337,7 +337,7 @@ TEST(SceneYaml, NotAMapping) {
 
 TEST(SceneYaml, UnknownKeys) {
   expect_error(with("gravity: 9.81", "gravty: 9.81"), 4, "gravty",
-               "allowed: scenario, description, steps, gravity, defaults, robots, objects, pairs");
+               "allowed: scenario, description, steps, gravity, defaults, robots, objects, obstacles, pairs");
   expect_error(with("    mass: 1.0", "    masss: 1.0"), 10, "robots[0].masss",
                "unknown key (allowed: name, radius, mass");
   expect_error(with("{x: 0, y: 2}", "{x: 0, y: 2, z: 1}"), 19, "robots[1].start.z",

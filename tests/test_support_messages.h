@@ -6,6 +6,9 @@
 #include <filesystem>
 #include <string>
 
+#include "core/model/scene_yaml.h"
+#include "core/util/errors.h"
+
 namespace disco::test_support {
 
 // `msg` must start with `prefix` (e.g. "scene.yaml:12: key 'robots[0].mass': ") and
@@ -15,6 +18,16 @@ inline void expect_prefix(const std::string& msg, const std::string& prefix,
   EXPECT_EQ(msg.rfind(prefix, 0), 0u) << "expected prefix: " << prefix << "\n     got: " << msg;
   EXPECT_NE(msg.find(fragment), std::string::npos)
       << "expected fragment: " << fragment << "\n     got: " << msg;
+}
+
+// The InputError message of parsing scene `text` (as "s.yaml"), or "" if it loads.
+inline std::string scene_error_of(const std::string& text) {
+  try {
+    parse_scene(text, "s.yaml");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
 }
 
 // A path in the temporary directory, unique to the running test.

@@ -49,6 +49,16 @@ inline Robot make_robot(const std::string& name, double radius, double mass, dou
   return r;
 }
 
+inline Pair make_pair(int i, int j, PairMode mode, double mu, double safe_distance) {
+  Pair p;
+  p.i = i;
+  p.j = j;
+  p.mode = mode;
+  p.mu = mu;
+  p.safe_distance = safe_distance;
+  return p;
+}
+
 // A scene with one pair per robot pair i < j, all of `mode`.
 inline Scene make_scene(const std::string& name, int steps, std::vector<Robot> robots,
                         PairMode mode = PairMode::kContact, double pair_mu = 0.3,
@@ -61,16 +71,38 @@ inline Scene make_scene(const std::string& name, int steps, std::vector<Robot> r
   s.robots = std::move(robots);
   const int n = static_cast<int>(s.robots.size());
   for (int i = 0; i < n; ++i)
-    for (int j = i + 1; j < n; ++j) {
-      Pair p;
-      p.i = i;
-      p.j = j;
-      p.mode = mode;
-      p.mu = pair_mu;
-      p.safe_distance = safe_distance;
-      s.pairs.push_back(p);
-    }
+    for (int j = i + 1; j < n; ++j) s.pairs.push_back(make_pair(i, j, mode, pair_mu, safe_distance));
   return s;
+}
+
+// Appends obstacle `ob` to `s` with a pair (mode, mu, d_s) for every disk.
+inline void add_obstacle(Scene& s, const Obstacle& ob, PairMode mode, double mu = 0.3,
+                         double safe_distance = 0.01) {
+  const int j = static_cast<int>(s.obstacles.size());
+  s.obstacles.push_back(ob);
+  for (int i = 0; i < static_cast<int>(s.robots.size()); ++i)
+    s.obstacle_pairs.push_back(make_pair(i, j, mode, mu, safe_distance));
+}
+
+inline Obstacle wall(const std::string& name, std::array<double, 2> from, std::array<double, 2> to,
+                     double half_thickness = 0.0) {
+  Obstacle o;
+  o.name = name;
+  o.shape = ObstacleShape::kWall;
+  o.from = from;
+  o.to = to;
+  o.radius = half_thickness;
+  return o;
+}
+
+inline Obstacle post(const std::string& name, std::array<double, 2> centre, double radius,
+                     std::array<double, 2> velocity = {0.0, 0.0}) {
+  Obstacle o;
+  o.name = name;
+  o.from = o.to = centre;
+  o.radius = radius;
+  o.velocity = velocity;
+  return o;
 }
 
 // Direction d_k of the floor-friction polygon (core/model/floor_friction.h).

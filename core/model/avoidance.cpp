@@ -5,10 +5,9 @@
 namespace disco {
 
 void add_avoidance(Layout& L, PolynomialProgram& P) {
-  const Scene& s = L.model_scene();
   L.for_each_gap_state([&](int t, int p) {
-    if (s.pairs[p].mode == PairMode::kAvoid)
-      P.set_variable_bounds(L.gap_index(p, t), s.pairs[p].safe_distance, kInf);
+    if (L.pair_mode(p) == PairMode::kAvoid)
+      P.set_variable_bounds(L.gap_index(p, t), L.pair(p).safe_distance, kInf);
   });
 }
 

@@ -25,6 +25,9 @@
 // both torques have the same sign. With these signs friction dissipates:
 // its power (alpha_1 - alpha_2) v_T is never positive.
 //
+// A disk and an obstacle (core/model/obstacles.h): j is the obstacle, with its own
+// velocity (0 for a wall or a post) and omega = 0; only the disk receives impulses.
+//
 // The same quantities at a point z are computed here, once, for every other user (the
 // guesses, RobotProblem::transfer, the solution file): sliding_velocity() and
 // contact_force(). tests/test_model_physics.cpp checks them against the rows.

@@ -1,6 +1,9 @@
 #include "core/model/gap.h"
 
+#include <array>
 #include <cmath>
+
+#include "core/model/obstacles.h"
 
 namespace disco {
 
@@ -12,13 +15,16 @@ void add_gap(Layout& L, PolynomialProgram& P) {
     P.add(r, -1.0, nx, nx);
     P.add(r, -1.0, ny, ny);
   });
+  add_wall_projection(L, P);  // a wall's nearest point, which its pairs' N uses
 }
 
 double centre_gap(const Layout& L, const ConstVectorRef& z, int pair, int t) {
-  const Scene& s = L.model_scene();
-  const Pair& pr = s.pairs[pair];
-  return std::hypot(L.normal(pair, t, 0).value(z), L.normal(pair, t, 1).value(z)) -
-         (s.robots[pr.i].radius + s.robots[pr.j].radius);
+  if (L.is_wall_pair(pair)) {  // the nearest point itself, not the unknown s
+    const int i = L.pair(pair).i;
+    const std::array<double, 2> c{L.state(i, t, kX).value(z), L.state(i, t, kY).value(z)};
+    return obstacle_distance(L.obstacle(pair), c, 0.0) - L.radius_sum(pair);
+  }
+  return std::hypot(L.normal(pair, t, 0).value(z), L.normal(pair, t, 1).value(z)) - L.radius_sum(pair);
 }
 
 double clearance(const Scene& scene, const Pair& pair) {

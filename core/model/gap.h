@@ -11,6 +11,9 @@
 // as a square root, and its derivatives stay bounded even where the centres
 // would coincide.
 //
+// The same rows hold for a disk and an obstacle (core/model/obstacles.h: the obstacle's
+// point nearest to the disk, and for walls the rows that define that point).
+//
 // clearance() is the least centre distance the model allows a pair, R^i + R^j + d_s
 // (avoid, core/model/avoidance.h) or R^i + R^j (contact: rho >= 0,
 // core/model/nonpenetration.h); the scene parser, the reachability checks, the adaptive
@@ -23,8 +26,9 @@ namespace disco {
 
 void add_gap(Layout& L, PolynomialProgram& P);
 
-// The gap |p^j - p^i| - R^i - R^j of pair p at state t of the point z, from the centres
-// (model units): defined at every state, whether rho^t is an unknown or not.
+// The gap |p^j - p^i| - R^i - R^j of pair p (or an obstacle pair's, with the obstacle's
+// nearest point) at state t of the point z, from the centres (model units): defined at
+// every state, whether rho^t (or a wall's s^t) is an unknown or not.
 double centre_gap(const Layout& L, const ConstVectorRef& z, int pair, int t);
 
 // R^i + R^j (+ d_s for an avoid pair), in the scene's units.

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/model/obstacles.h"
 #include "core/util/check.h"
 #include "core/util/numbers.h"
 
@@ -10,9 +11,9 @@ namespace disco {
 Layout::Layout(const Scene& s, const ModelPlan& plan, PolynomialProgram& P) : scene_(s) {
   const int N = s.steps;
   const int nr = static_cast<int>(s.robots.size());
-  const int np = static_cast<int>(s.pairs.size());
+  const int np = static_cast<int>(s.pairs.size() + s.obstacle_pairs.size());
   DISCO_CHECK(static_cast<int>(plan.rotates.size()) == nr, "a plan entry per robot");
-  DISCO_CHECK(static_cast<int>(plan.pairs.size()) == np, "a plan entry per pair");
+  DISCO_CHECK(static_cast<int>(plan.pairs.size()) == np, "a plan entry per pair and obstacle pair");
   robots_.resize(nr);
   pairs_.resize(np);
   momentum_.assign(nr, std::vector<std::array<int, 3>>(N, {-1, -1, -1}));
@@ -33,9 +34,10 @@ Layout::Layout(const Scene& s, const ModelPlan& plan, PolynomialProgram& P) : sc
     auto& v = pairs_[p];
     v.friction = w.friction;
     v.gap.assign(N + 1, -1);
+    for (auto* index : {&v.s, &v.low, &v.high}) index->assign(N + 1, -1);
     for (auto* index : {&v.cn, &v.a1, &v.a2, &v.gamma}) index->assign(N, -1);
     if (w.empty()) continue;
-    const bool contact = s.pairs[p].mode == PairMode::kContact;
+    const bool contact = pair(p).mode == PairMode::kContact;
     for (int t = std::max(1, contact ? w.first - 1 : w.first); t <= w.last; ++t) gap_at[p][t] = true;
     if (contact)
       for (int t = w.first - 1; t < w.last; ++t) contact_at[p][t] = true;
@@ -69,9 +71,15 @@ Layout::Layout(const Scene& s, const ModelPlan& plan, PolynomialProgram& P) : sc
     // A contact pair's gap is >= 0 at every state: in the full model each is a
     // side of its pair with c_n; at the first state of a window it is not, and
     // without the bound its row (rho + R)^2 = |d|^2 would admit rho + R = -|d|.
-    for (int p = 0; p < np; ++p)
-      if (gap_at[p][t + 1])
-        pairs_[p].gap[t + 1] = P.add_variable(s.pairs[p].mode == PairMode::kContact ? 0.0 : -kInf, kInf);
+    for (int p = 0; p < np; ++p) {
+      if (!gap_at[p][t + 1]) continue;
+      auto& v = pairs_[p];
+      v.gap[t + 1] = P.add_variable(pair(p).mode == PairMode::kContact ? 0.0 : -kInf, kInf);
+      if (!is_wall_pair(p)) continue;
+      v.s[t + 1] = P.add_variable(0.0, 1.0, 0.5);
+      v.low[t + 1] = P.add_variable(0.0, kInf);
+      v.high[t + 1] = P.add_variable(0.0, kInf);
+    }
   }
 }
 
@@ -115,6 +123,43 @@ int Layout::momentum_row(int robot, int t, int axis) const {
   return r;
 }
 
+const Obstacle& Layout::obstacle(int p) const {
+  DISCO_CHECK(with_obstacle(p), "the obstacle of a pair of two disks");
+  return scene_.obstacles[pair(p).j];
+}
+
+bool Layout::is_wall_pair(int p) const {
+  return with_obstacle(p) && obstacle(p).shape == ObstacleShape::kWall;
+}
+
+double Layout::radius_sum(int p) const {
+  const Pair& pr = pair(p);
+  return scene_.robots[pr.i].radius + (with_obstacle(p) ? obstacle(p).radius : scene_.robots[pr.j].radius);
+}
+
+Affine Layout::wall_parameter(int p, int t) const {
+  DISCO_CHECK(is_wall_pair(p), "the wall parameter of a pair without a wall");
+  if (t > 0) {
+    DISCO_CHECK(pairs_[p].s[t] >= 0, "the wall parameter outside the pair's window");
+    return Affine::variable(pairs_[p].s[t]);
+  }
+  const Robot& rb = scene_.robots[pair(p).i];
+  return Affine(wall_projection(obstacle(p), {rb.start[kX], rb.start[kY]}));
+}
+
+Affine Layout::other_state(int p, int t, int c) const {
+  if (!with_obstacle(p)) return state(pair(p).j, t, c);
+  const Obstacle& ob = obstacle(p);
+  if (c == kPhi || c == kOmega) return Affine(0.0);
+  const int a = c == kX || c == kVx ? 0 : 1;
+  if (c == kVx || c == kVy) return Affine(ob.velocity[a]);
+  if (ob.shape == ObstacleShape::kWall) return Affine(ob.from[a]) + (ob.to[a] - ob.from[a]) * wall_parameter(p, t);
+  // A disk at from + tau v, tau = t h = t T_f / N: affine in T_f.
+  Affine centre(ob.from[a]);
+  if (ob.velocity[a] != 0.0 && t > 0) centre += Affine::variable(t_f_, ob.velocity[a] * t / scene_.steps);
+  return centre;
+}
+
 int Layout::gap_index(int pair, int t) const { return t == 0 ? -1 : pairs_[pair].gap[t]; }
 
 bool Layout::has_gap(int pair, int t) const { return t == 0 || pairs_[pair].gap[t] >= 0; }
@@ -122,23 +167,17 @@ bool Layout::has_gap(int pair, int t) const { return t == 0 || pairs_[pair].gap[
 Affine Layout::gap(int pair, int t) const {
   DISCO_CHECK(has_gap(pair, t), "the gap of a pair outside its window");
   if (t == 0) {
-    const Pair& p = scene_.pairs[pair];
-    const auto& a = scene_.robots[p.i].start;
-    const auto& b = scene_.robots[p.j].start;
-    return Affine(std::hypot(b[kX] - a[kX], b[kY] - a[kY]) - scene_.robots[p.i].radius -
-                  scene_.robots[p.j].radius);
+    const auto& a = scene_.robots[this->pair(pair).i].start;
+    const double bx = other_state(pair, 0, kX).constant, by = other_state(pair, 0, kY).constant;
+    return Affine(std::hypot(bx - a[kX], by - a[kY]) - radius_sum(pair));
   }
   return Affine::variable(pairs_[pair].gap[t]);
 }
 
-Affine Layout::centre_distance(int pair, int t) const {
-  const Pair& p = scene_.pairs[pair];
-  return gap(pair, t) + Affine(scene_.robots[p.i].radius + scene_.robots[p.j].radius);
-}
+Affine Layout::centre_distance(int pair, int t) const { return gap(pair, t) + Affine(radius_sum(pair)); }
 
-Affine Layout::normal(int pair, int t, int axis) const {
-  const Pair& p = scene_.pairs[pair];
-  return state(p.j, t, axis) - state(p.i, t, axis);
+Affine Layout::normal(int p, int t, int axis) const {
+  return other_state(p, t, axis) - state(pair(p).i, t, axis);
 }
 
 Affine Layout::tangent(int pair, int t, int axis) const {

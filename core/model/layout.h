@@ -13,6 +13,15 @@
 //                                  the pair's window (t = 0: constant)
 //   per contact pair, interval t:  c_n (and alpha_1, alpha_2, gamma with friction)
 //                                  for the intervals ending in the window
+//   per wall pair, state t:        the closest point's parameter s and its two
+//                                  projection multipliers (core/model/obstacles.h)
+//
+// Pairs. A pair index p runs over Scene::pairs (two disks) and then over
+// Scene::obstacle_pairs (a disk and an obstacle): pair(p) is either. Member i is
+// always a disk; member j is a disk or an obstacle, whose "state" other_state()
+// gives: its centre (a wall: its point nearest to disk i, a + s d), its constant
+// velocity, and phi = omega = 0. Nothing pushes an obstacle: its member has no
+// momentum rows (other_disk() is -1), so the families add impulses to i only.
 //
 // What exists is decided by a ModelPlan (core/model/model_plan.h): the full
 // model of Appendix A, or only what the scene needs. For a contact pair with
@@ -66,6 +75,24 @@ class Layout {
   // Force unknowns of robot i over interval t (1 or 2; none for an object).
   const std::vector<int>& force_indices(int robot, int t) const { return robots_[robot].force[t]; }
 
+  // Pairs: Scene::pairs, then Scene::obstacle_pairs (see the header).
+  int num_pairs() const { return static_cast<int>(pairs_.size()); }
+  bool with_obstacle(int pair) const { return pair >= static_cast<int>(scene_.pairs.size()); }
+  const Pair& pair(int p) const {
+    return with_obstacle(p) ? scene_.obstacle_pairs[p - scene_.pairs.size()] : scene_.pairs[p];
+  }
+  const Obstacle& obstacle(int pair) const;  // needs with_obstacle
+  int other_disk(int pair) const { return with_obstacle(pair) ? -1 : this->pair(pair).j; }
+  double radius_sum(int pair) const;        // R_i + R_j, or R_i + the obstacle's radius
+  // Member j's state component c at state t (a disk's state(), or the obstacle's, above).
+  Affine other_state(int pair, int t, int component) const;
+  // A wall pair's projection unknowns at state t >= 1 in its window (-1 otherwise).
+  bool is_wall_pair(int pair) const;
+  int wall_parameter_index(int pair, int t) const { return t == 0 ? -1 : pairs_[pair].s[t]; }
+  int wall_low_index(int pair, int t) const { return t == 0 ? -1 : pairs_[pair].low[t]; }
+  int wall_high_index(int pair, int t) const { return t == 0 ? -1 : pairs_[pair].high[t]; }
+  Affine wall_parameter(int pair, int t) const;  // s: the constant projection at t = 0
+
   bool has_gap(int pair, int t) const;             // t = 0, or rho^t is an unknown
   Affine gap(int pair, int t) const;               // rho; needs has_gap
   int gap_index(int pair, int t) const;            // -1 at t = 0
@@ -73,7 +100,8 @@ class Layout {
   // N = p_j - p_i (not unit), T = N turned +90 degrees: (-N_y, N_x).
   Affine normal(int pair, int t, int axis) const;
   Affine tangent(int pair, int t, int axis) const;
-  bool is_contact(int pair) const { return scene_.pairs[pair].mode == PairMode::kContact; }
+  bool is_contact(int pair) const { return pair_mode(pair) == PairMode::kContact; }
+  PairMode pair_mode(int p) const { return pair(p).mode; }
   // Contact interval t: c_n^t exists (and, with friction, alpha_1, alpha_2, gamma).
   bool has_contact(int pair, int t) const { return pairs_[pair].cn[t] >= 0; }
   bool has_contact_friction(int pair) const { return pairs_[pair].friction; }
@@ -101,13 +129,13 @@ class Layout {
   template <class F>
   void for_each_contact_step(F&& f) const {
     for (int t = 0; t < steps(); ++t)
-      for (int p = 0; p < static_cast<int>(scene_.pairs.size()); ++p)
+      for (int p = 0; p < num_pairs(); ++p)
         if (has_contact(p, t)) f(t, p);
   }
   template <class F>
   void for_each_gap_state(F&& f) const {
     for (int t = 1; t <= steps(); ++t)
-      for (int p = 0; p < static_cast<int>(scene_.pairs.size()); ++p)
+      for (int p = 0; p < num_pairs(); ++p)
         if (pairs_[p].gap[t] >= 0) f(t, p);
   }
 
@@ -143,6 +171,7 @@ class Layout {
     bool friction = false;
     std::vector<int> gap;                  // [state t], -1: none (t = 0: the constant)
     std::vector<int> cn, a1, a2, gamma;    // [interval t], -1: none
+    std::vector<int> s, low, high;         // [state t], wall pairs only, -1: none
   };
   Scene scene_;
   int t_f_ = -1;

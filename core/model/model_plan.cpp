@@ -8,6 +8,7 @@
 
 #include "core/model/floor_friction.h"
 #include "core/model/gap.h"
+#include "core/model/obstacles.h"
 #include "core/util/check.h"
 
 namespace disco {
@@ -66,6 +67,11 @@ std::vector<std::vector<double>> speed_bounds(const Scene& s, double h) {
   const std::vector<int> comp = contact_components(s);
   std::vector<int> size(nr, 0);
   for (int c : comp) ++size[c];
+  // A disk in contact with an obstacle takes the energy bound too: the obstacle's
+  // impulses only dissipate (fixed and convex: core/model/obstacles.h), but with
+  // friction they can turn spin into speed, which the one-robot bound leaves out.
+  for (const Pair& p : s.obstacle_pairs)
+    if (p.mode == PairMode::kContact) size[comp[p.i]] = std::max(size[comp[p.i]], 2);
   // Per component: G^2 and the start energy e0^2.
   std::vector<double> G2(nr, 0.0), e2(nr, 0.0);
   // M a = Fbar - mu M g cos(pi / K): the largest net push along the motion.
@@ -117,12 +123,14 @@ int ModelPlan::turning_robots() const {
 ModelPlan plan_model(const Scene& s, bool adaptive, double horizon_max) {
   const int N = s.steps, nr = static_cast<int>(s.robots.size());
   const int np = static_cast<int>(s.pairs.size());
+  const int nall = np + static_cast<int>(s.obstacle_pairs.size());
+  auto pair = [&](int p) -> const Pair& { return p < np ? s.pairs[p] : s.obstacle_pairs[p - np]; };
   ModelPlan plan;
   plan.rotates.assign(nr, true);
-  plan.pairs.resize(np);
-  for (int p = 0; p < np; ++p) {
-    plan.pairs[p] = {1, N, s.pairs[p].mode == PairMode::kContact};
-    if (adaptive) plan.pairs[p].friction = plan.pairs[p].friction && s.pairs[p].mu > 0;
+  plan.pairs.resize(nall);
+  for (int p = 0; p < nall; ++p) {
+    plan.pairs[p] = {1, N, pair(p).mode == PairMode::kContact};
+    if (adaptive) plan.pairs[p].friction = plan.pairs[p].friction && pair(p).mu > 0;
   }
   if (!adaptive) return plan;
 
@@ -161,15 +169,37 @@ ModelPlan plan_model(const Scene& s, bool adaptive, double horizon_max) {
       plan.pairs[p].first = first;
       plan.pairs[p].last = last;
     }
+    // Obstacle pairs: the obstacle's place up to state t is within the box of its
+    // segment (a wall) or of its way from tau = 0 to t h (a disk), rounded by R_o.
+    for (int q = 0; q < static_cast<int>(s.obstacle_pairs.size()); ++q) {
+      const Pair& pr = s.obstacle_pairs[q];
+      const Obstacle& ob = s.obstacles[pr.j];
+      const double reach = obstacle_clearance(s, pr) + kReachMargin * (s.robots[pr.i].radius + ob.radius);
+      int first = N + 1, last = 0;
+      for (int t = 1; t <= N; ++t) {
+        std::array<double, 2> end = ob.to;
+        if (ob.shape == ObstacleShape::kDisk)
+          end = {ob.from[0] + t * h * ob.velocity[0], ob.from[1] + t * h * ob.velocity[1]};
+        const RoundedBox o{{std::min(ob.from[0], end[0]), std::min(ob.from[1], end[1])},
+                           {std::max(ob.from[0], end[0]), std::max(ob.from[1], end[1])},
+                           ob.radius};
+        double apart = -kInf;
+        for (const auto& ra : regions(pr.i, t)) apart = std::max(apart, distance_bound(ra, o));
+        if (!(apart > reach)) first = std::min(first, t), last = t;
+      }
+      plan.pairs[np + q].first = first;
+      plan.pairs[np + q].last = last;
+    }
   }
 
   // Rotation (item 4).
   for (int i = 0; i < nr; ++i) {
     const Robot& rb = s.robots[i];
     bool turned = rb.start[kOmega] != 0.0;
-    for (int p = 0; p < np; ++p) {
-      const Pair& pr = s.pairs[p];
-      if ((pr.i == i || pr.j == i) && plan.pairs[p].friction && !plan.pairs[p].empty()) turned = true;
+    for (int p = 0; p < nall; ++p) {
+      const Pair& pr = pair(p);
+      const bool member = pr.i == i || (p < np && pr.j == i);
+      if (member && plan.pairs[p].friction && !plan.pairs[p].empty()) turned = true;
     }
     auto inside = [&](int c, double v) { return rb.target.lower[c] <= v && v <= rb.target.upper[c]; };
     const bool constants_allowed = inside(kPhi, rb.start[kPhi]) && inside(kOmega, 0.0);

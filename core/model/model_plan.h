@@ -53,6 +53,14 @@
 //    mu > 0 and a window keeps phi = phi^0 and omega = 0: constants, not
 //    unknowns, unless its target box excludes them (then the unknowns stay, so
 //    the solver reports the infeasibility as the full model would).
+// Obstacles (core/model/obstacles.h) take part as pairs: a disk-obstacle pair keeps
+//    the states where the disk's region comes within reach of the obstacle's place (a
+//    wall's segment, or a moving disk's way so far, rounded by its radius). A fixed
+//    obstacle's impulses never add energy (the distance to a convex set is convex, so
+//    the normal impulse's power is <= 0 as in item 1; friction by maximum
+//    dissipation); a disk in contact with one takes the energy bound of item 1, which
+//    counts spin. Contact with a moving obstacle is refused by the scene parser: it
+//    could add energy.
 // 5. A contact pair with mu = 0 has no friction unknowns: its complementarity
 //    forces alpha_1 = alpha_2 = 0 (and gamma needs only gamma >= |v_T|).
 // Contact-pair gaps are unknowns bounded below by 0 at every kept state
@@ -86,7 +94,7 @@ struct PairPlan {
 };
 
 struct ModelPlan {
-  std::vector<PairPlan> pairs;  // per Scene::pairs entry
+  std::vector<PairPlan> pairs;  // per Scene::pairs entry, then per Scene::obstacle_pairs entry
   std::vector<bool> rotates;    // per robot: phi and omega are unknowns
   int pair_states() const;      // sum of the pairs' window lengths
   int turning_robots() const;

@@ -6,7 +6,8 @@
 //     0 <= c_n^t  _|_  rho^{t+1} >= 0
 // and the normal impulse h c_n^t N^t acts on robot j, its opposite on robot i,
 // with N^t = p^j(t) - p^i(t) (not a unit vector: the push has magnitude
-// c_n o^t).
+// c_n o^t). For a disk and an obstacle, p^j is the obstacle's nearest point
+// (core/model/obstacles.h) and only the disk receives the impulse.
 //
 // Time index. Appendix A pairs c_n^t with rho^t, the gap at the START of the
 // interval. Then a force can act only between disks that already touch, and

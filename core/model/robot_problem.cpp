@@ -13,6 +13,7 @@
 #include "core/model/kinematics.h"
 #include "core/model/lower_bound.h"
 #include "core/model/nonpenetration.h"
+#include "core/model/obstacles.h"
 #include "core/util/check.h"
 #include "core/util/numbers.h"
 
@@ -95,12 +96,12 @@ Vector RobotProblem::transfer(const Vector& z, const RobotProblem& to) const {
   const Layout& B = to.layout();
   const Scene& s = A.model_scene();
   DISCO_CHECK(z.size() == program_.num_variables(), "a point of this model");
-  DISCO_CHECK(B.model_scene().robots.size() == s.robots.size() && B.model_scene().pairs.size() == s.pairs.size() &&
+  DISCO_CHECK(B.model_scene().robots.size() == s.robots.size() && B.num_pairs() == A.num_pairs() &&
                   B.steps() == A.steps() && to.units_.length == units_.length &&
                   to.units_.time == units_.time,
               "a model of the same scene");
   const int N = s.steps, nr = static_cast<int>(s.robots.size());
-  const int np = static_cast<int>(s.pairs.size());
+  const int np = A.num_pairs();
   Vector out = Vector::Zero(to.program().num_variables());
   auto value = [&](const Affine& a) { return a.value(z); };
   auto put = [&](int k, double v) {
@@ -119,10 +120,17 @@ Vector RobotProblem::transfer(const Vector& z, const RobotProblem& to) const {
       out[B.floor_gamma_index(i, t)] = z[A.floor_gamma_index(i, t)];
     }
   }
+  // A wall's nearest point from the centres (exact where A has none): before the gaps and
+  // contact gammas, which use it through N.
+  complete_wall_projections(B, out);
   for (int p = 0; p < np; ++p) {
     for (int t = 1; t <= N; ++t) {
       if (!B.has_gap(p, t)) continue;
       put(B.gap_index(p, t), A.has_gap(p, t) ? value(A.gap(p, t)) : centre_gap(A, z, p, t));
+      if (!A.is_wall_pair(p) || A.wall_parameter_index(p, t) < 0) continue;
+      out[B.wall_parameter_index(p, t)] = z[A.wall_parameter_index(p, t)];
+      out[B.wall_low_index(p, t)] = z[A.wall_low_index(p, t)];
+      out[B.wall_high_index(p, t)] = z[A.wall_high_index(p, t)];
     }
     for (int t = 0; t < N; ++t) {
       put(B.normal_multiplier_index(p, t), value(A.normal_multiplier(p, t)));
@@ -134,7 +142,7 @@ Vector RobotProblem::transfer(const Vector& z, const RobotProblem& to) const {
         continue;
       }
       // No friction acts: gamma >= |v_T| satisfies both rows; take the least.
-      out[B.contact_gamma_index(p, t)] = std::abs(sliding_velocity(A, z, p, t));
+      out[B.contact_gamma_index(p, t)] = std::abs(sliding_velocity(B, out, p, t));
     }
   }
   return out;
@@ -158,10 +166,12 @@ std::vector<RobotProblem::Violation> RobotProblem::violations(const Vector& z, d
       if (tag < 0) continue;
       const double v = std::max({program_.constraint_lower()[r] - c[r], c[r] - program_.constraint_upper()[r], 0.0});
       const Layout::RowOwner& o = L.row_owner(tag);
-      const std::string owner =
-          o.pair ? "pair ('" + scene_.robots[scene_.pairs[o.index].i].name + "', '" +
-                       scene_.robots[scene_.pairs[o.index].j].name + "')"
-                 : robot(o.index);
+      const std::string owner = !o.pair ? robot(o.index)
+                                : L.with_obstacle(o.index)
+                                    ? "pair ('" + scene_.robots[L.pair(o.index).i].name + "', obstacle '" +
+                                          scene_.obstacles[L.pair(o.index).j].name + "')"
+                                    : "pair ('" + scene_.robots[scene_.pairs[o.index].i].name + "', '" +
+                                          scene_.robots[scene_.pairs[o.index].j].name + "')";
       note(owner, o.family, v);
     }
   }

@@ -63,10 +63,27 @@ enum class PairMode {
 };
 
 struct Pair {
-  int i = 0, j = 0;             // indices into Scene::robots (robots or objects), i < j
+  int i = 0, j = 0;             // indices into Scene::robots (robots or objects), i < j; in
+                                // Scene::obstacle_pairs, j indexes Scene::obstacles
   PairMode mode = PairMode::kAvoid;
   double safe_distance = 0;     // d_s >= 0 [m] (avoid mode)
   double mu = 0;                // contact friction coefficient >= 0 (contact mode)
+};
+
+// A fixed or moving obstacle (the paper's Section VI): it has no unknowns and nothing moves
+// it. A disk of `radius` centred at `from` + tau `velocity` at time tau (a fixed post when
+// the velocity is 0), or a wall: the segment from `from` to `to` (|to - from| > 0) thickened
+// by `radius` (half the wall's thickness, >= 0), i.e. a capsule. Robots and objects meet
+// it through Scene::obstacle_pairs (core/model/obstacles.h).
+enum class ObstacleShape { kDisk, kWall };
+struct Obstacle {
+  std::string name;             // unique within the scene (robots, objects and obstacles)
+  ObstacleShape shape = ObstacleShape::kDisk;
+  std::array<double, 2> from{0.0, 0.0};      // a disk's centre at tau = 0; a wall's first end
+  std::array<double, 2> to{0.0, 0.0};        // a wall's second end (unused for a disk)
+  std::array<double, 2> velocity{0.0, 0.0};  // a disk's constant velocity [m/s]; 0 for a wall
+  double radius = 0;            // disk: > 0; wall: half its thickness, >= 0 [m]
+  bool moves() const { return velocity[0] != 0.0 || velocity[1] != 0.0; }
 };
 
 // Where a scene key was given, for messages made after the scene was read
@@ -86,6 +103,9 @@ struct Scene {
   double gravity = 9.81;        // g > 0 [m/s^2]
   std::vector<Robot> robots;    // at least one robot, then the objects (Robot::object)
   std::vector<Pair> pairs;      // exactly one per pair of disks (i < j), in (i, j) order
+  std::vector<Obstacle> obstacles;
+  // One per (disk, obstacle): i indexes robots, j obstacles; in (j, i) order.
+  std::vector<Pair> obstacle_pairs;
 };
 
 }  // namespace disco

@@ -14,6 +14,7 @@
 
 #include "core/config/yaml_nodes.h"
 #include "core/model/gap.h"
+#include "core/model/obstacles.h"
 #include "core/model/reachability.h"
 #include "core/util/errors.h"
 
@@ -26,7 +27,8 @@ using yaml::kOverrideSource;
 using yaml::override_fail;
 
 const std::vector<std::string> kRootKeys = {"scenario", "description", "steps",  "gravity",
-                                            "defaults", "robots",      "objects", "pairs"};
+                                            "defaults", "robots",      "objects", "obstacles",
+                                            "pairs"};
 // Robot keys that `defaults` may also give, in the order they are read.
 const std::vector<std::string> kFieldKeys = {
     "radius", "mass", "inertia", "mu", "damping", "force_max", "force_dims", "force_axis", "K"};
@@ -38,6 +40,9 @@ const std::vector<std::string> kForceKeys = {"force_max", "force_dims", "force_a
 const std::vector<std::string> kStateKeys(kStateNames.begin(), kStateNames.end());
 const std::vector<std::string> kPairsKeys = {"mode", "safe_distance", "mu", "overrides"};
 const std::vector<std::string> kPairOverrideKeys = {"robots", "mode", "safe_distance", "mu"};
+const std::vector<std::string> kObstacleKeys = {"name", "disk", "wall", "mode", "safe_distance", "mu"};
+const std::vector<std::string> kDiskObstacleKeys = {"x", "y", "radius", "vx", "vy"};
+const std::vector<std::string> kWallKeys = {"from", "to", "thickness"};
 
 constexpr double kTouchTolerance = 1e-12;  // relative, for the start-overlap checks
 
@@ -482,8 +487,8 @@ void read_disks(const Doc& doc, const YAML::Node& seq, const std::string& sectio
   }
 }
 
-std::vector<Pair> read_pairs(const Doc& doc, const YAML::Node& n,
-                             const std::vector<Robot>& robots) {
+// The `pairs` defaults (mode, safe_distance, mu) as a Pair.
+Pair pair_defaults(const Doc& doc, const YAML::Node& n) {
   const auto fields = doc.mapping(n, "pairs", kPairsKeys, true);
   Pair base;
   base.mode = PairMode::kAvoid;
@@ -498,7 +503,13 @@ std::vector<Pair> read_pairs(const Doc& doc, const YAML::Node& n,
   if (const auto it = fields.find("mu"); it != fields.end()) {
     base.mu = doc.non_negative(it->second, "pairs.mu");
   }
+  return base;
+}
 
+std::vector<Pair> read_pairs(const Doc& doc, const YAML::Node& n,
+                             const std::vector<Robot>& robots) {
+  const auto fields = doc.mapping(n, "pairs", kPairsKeys, true);
+  const Pair base = pair_defaults(doc, n);
   const int count = static_cast<int>(robots.size());
   std::vector<Pair> pairs;
   std::map<std::pair<int, int>, std::size_t> slot;  // (i, j) -> index in `pairs`
@@ -568,6 +579,122 @@ std::vector<Pair> read_pairs(const Doc& doc, const YAML::Node& n,
     }
   }
   return pairs;
+}
+
+// [x, y] at `path`.
+std::array<double, 2> read_point(const Doc& doc, const YAML::Node& n, const std::string& path) {
+  if (!n.IsSequence() || n.size() != 2) doc.fail(n, path, "must be a point [x, y] (got " + describe(n) + ")");
+  return {doc.number(n[0], item(path, 0)), doc.number(n[1], item(path, 1))};
+}
+
+// The `obstacles` sequence: Scene::obstacles, and Scene::obstacle_pairs from the `pairs`
+// defaults (`base`), each obstacle's own mode / safe_distance / mu, and the rule that a
+// pair with an object is a contact pair unless the obstacle names a mode.
+void read_obstacles(const Doc& doc, const YAML::Node& seq, const Pair& base, Scene& scene) {
+  if (seq.IsNull()) return;
+  if (!seq.IsSequence())
+    doc.fail(seq, "obstacles", "must be a sequence of obstacles (got " + describe(seq) + ")");
+  for (std::size_t k = 0; k < seq.size(); ++k) {
+    const YAML::Node node = seq[k];
+    const std::string path = item("obstacles", k);
+    const auto fields = doc.mapping(node, path, kObstacleKeys, false);
+    Obstacle ob;
+    const auto name_it = fields.find("name");
+    if (name_it == fields.end()) doc.fail(node, child(path, "name"), "is required but missing");
+    ob.name = doc.name(name_it->second, child(path, "name"));
+    for (const Robot& r : scene.robots)
+      if (r.name == ob.name)
+        doc.fail(name_it->second, child(path, "name"),
+                 "duplicate name " + quote(ob.name) + " (already used by a robot or object)");
+    for (const Obstacle& o : scene.obstacles)
+      if (o.name == ob.name)
+        doc.fail(name_it->second, child(path, "name"),
+                 "duplicate name " + quote(ob.name) + " (already used by another obstacle)");
+    const auto disk_it = fields.find("disk"), wall_it = fields.find("wall");
+    if ((disk_it == fields.end()) == (wall_it == fields.end()))
+      doc.fail(node, path, "an obstacle is either a 'disk' or a 'wall': give exactly one of them");
+    if (disk_it != fields.end()) {
+      const std::string dpath = child(path, "disk");
+      const auto d = doc.mapping(disk_it->second, dpath, kDiskObstacleKeys, false);
+      for (const char* key : {"x", "y", "radius"})
+        if (d.count(key) == 0) doc.fail(disk_it->second, child(dpath, key), "is required but missing");
+      ob.shape = ObstacleShape::kDisk;
+      ob.from = {doc.number(d.at("x"), child(dpath, "x")), doc.number(d.at("y"), child(dpath, "y"))};
+      ob.to = ob.from;
+      ob.radius = doc.positive(d.at("radius"), child(dpath, "radius"));
+      if (const auto it = d.find("vx"); it != d.end()) ob.velocity[0] = doc.number(it->second, child(dpath, "vx"));
+      if (const auto it = d.find("vy"); it != d.end()) ob.velocity[1] = doc.number(it->second, child(dpath, "vy"));
+    } else {
+      const std::string wpath = child(path, "wall");
+      const auto w = doc.mapping(wall_it->second, wpath, kWallKeys, false);
+      for (const char* key : {"from", "to"})
+        if (w.count(key) == 0) doc.fail(wall_it->second, child(wpath, key), "is required but missing");
+      ob.shape = ObstacleShape::kWall;
+      ob.from = read_point(doc, w.at("from"), child(wpath, "from"));
+      ob.to = read_point(doc, w.at("to"), child(wpath, "to"));
+      if (const auto it = w.find("thickness"); it != w.end())
+        ob.radius = 0.5 * doc.non_negative(it->second, child(wpath, "thickness"));
+      const double length = std::hypot(ob.to[0] - ob.from[0], ob.to[1] - ob.from[1]);
+      const double scale = std::max({std::abs(ob.from[0]), std::abs(ob.from[1]), std::abs(ob.to[0]),
+                                     std::abs(ob.to[1]), ob.radius});
+      if (!(length > 1e-9 * scale))
+        doc.fail(w.at("to"), child(wpath, "to"),
+                 "a wall needs two distinct ends (got a wall of length " + show(length) +
+                     "); for a round post use 'disk'");
+    }
+    Pair own = base;
+    bool own_mode = false;
+    if (const auto it = fields.find("mode"); it != fields.end())
+      own.mode = doc.mode(it->second, child(path, "mode")), own_mode = true;
+    if (const auto it = fields.find("safe_distance"); it != fields.end())
+      own.safe_distance = doc.non_negative(it->second, child(path, "safe_distance"));
+    if (const auto it = fields.find("mu"); it != fields.end())
+      own.mu = doc.non_negative(it->second, child(path, "mu"));
+    // A moving obstacle could push (add energy), which the model does not state: its
+    // pairs are avoid pairs.
+    if (ob.moves()) {
+      if (own_mode && own.mode == PairMode::kContact)
+        doc.fail(fields.at("mode"), child(path, "mode"),
+                 "a moving obstacle cannot be a contact obstacle (it could push, which disco does "
+                 "not model): use mode avoid");
+      own.mode = PairMode::kAvoid;
+      own_mode = true;
+    }
+    const int j = static_cast<int>(scene.obstacles.size());
+    scene.obstacles.push_back(ob);
+    for (int i = 0; i < static_cast<int>(scene.robots.size()); ++i) {
+      Pair p = own;
+      if (!own_mode && scene.robots[i].object) p.mode = PairMode::kContact;
+      p.i = i;
+      p.j = j;
+      scene.obstacle_pairs.push_back(p);
+    }
+  }
+}
+
+// No disk may start inside an obstacle (nor closer than an avoid pair's safe distance).
+void check_obstacle_clearance(const Doc& doc, const DiskNodes& nodes, const Scene& scene) {
+  for (const Pair& p : scene.obstacle_pairs) {
+    const Robot& a = scene.robots[p.i];
+    const Obstacle& ob = scene.obstacles[p.j];
+    const double dist = obstacle_distance(ob, {a.start[kX], a.start[kY]}, 0.0);
+    const std::string what = disk_name(a) + " and obstacle " + quote(ob.name);
+    const YAML::Node at = nodes.at(p.i)["start"];
+    const std::string path = child(nodes.path(p.i), "start");
+    const double touch = a.radius + ob.radius;
+    if (dist < touch * (1 - kTouchTolerance))
+      doc.fail(at, path,
+               what + " overlap at the start: the centre is " + show(dist) +
+                   " from the obstacle's " + (ob.shape == ObstacleShape::kWall ? "centre line" : "centre") +
+                   ", less than R + R_obstacle = " + show(touch));
+    const double clear = obstacle_clearance(scene, p);
+    if (p.mode == PairMode::kAvoid && dist < clear * (1 - kTouchTolerance))
+      doc.fail(at, path,
+               what + " (an avoid pair) start too close: the centre is " + show(dist) +
+                   " from the obstacle's " + (ob.shape == ObstacleShape::kWall ? "centre line" : "centre") +
+                   ", less than R + R_obstacle + safe_distance = " + show(clear) +
+                   " (move it, lower the obstacle's safe_distance or use mode contact)");
+  }
 }
 
 void check_start_clearance(const Doc& doc, const DiskNodes& nodes, const Scene& scene) {
@@ -649,7 +776,13 @@ Scene validate(const Doc& doc, const YAML::Node& root, const std::string& source
   const auto pairs_it = fields.find("pairs");
   const YAML::Node pairs = pairs_it == fields.end() ? YAML::Node() : pairs_it->second;
   scene.pairs = read_pairs(doc, pairs, scene.robots);
+  YAML::Node obstacles;
+  if (const auto it = fields.find("obstacles"); it != fields.end()) {
+    obstacles = it->second;
+    read_obstacles(doc, obstacles, pair_defaults(doc, pairs), scene);
+  }
   check_start_clearance(doc, nodes, scene);
+  check_obstacle_clearance(doc, nodes, scene);
   check_targets(doc, nodes, scene);
   return scene;
 }

@@ -37,6 +37,17 @@
 //       mu: 0.3
 //       start: {x: 1, y: 0}
 //       target: {x: 3, vx: 0}
+//   obstacles:                    # optional sequence (core/model/obstacles.h); nothing moves them
+//     - name: post                #   required, unique among robots, objects and obstacles
+//       disk: {x: 0, y: 0, radius: 0.5, vx: 0, vy: 0}   # a post (radius > 0) at (x, y) +
+//                                 #   t (vx, vy); vx, vy optional, default 0
+//       mode: contact             #   optional: the mode of every disk's pair with it; default
+//                                 #   pairs.mode (contact for objects); a moving one: avoid only
+//       safe_distance: 0.01       #   optional, default pairs.safe_distance
+//       mu: 0.3                   #   optional, default pairs.mu
+//     - name: wall
+//       wall: {from: [0, 1], to: [0, 3], thickness: 0.1}  # distinct ends; thickness >= 0
+//                                 #   (default 0): a capsule of radius thickness / 2
 //   pairs:                        # optional mapping
 //     mode: avoid                 # default mode of every robot pair: avoid | contact; default
 //                                 #   avoid (a pair with an object is contact by default)
@@ -52,7 +63,8 @@
 //   [lo, hi]           -> a box; either side may be null (~) for "unbounded on that side";
 //                         lo <= hi is required.
 //
-// Scene::robots holds the robots, then the objects; names are unique across both.
+// Scene::robots holds the robots, then the objects; names are unique across both (and the
+// obstacles). Scene::obstacle_pairs holds one Pair per (disk, obstacle), obstacle by obstacle.
 // Scene::pairs holds exactly one Pair per pair of disks i < j, in (i, j) lexicographic
 // order: the `pairs` defaults first, then the matching entry of `pairs.overrides`.
 //
@@ -64,7 +76,9 @@
 //   * robots must not overlap at the start: centre distance >= R_i + R_j (relative tolerance
 //     1e-12, so touching is allowed); avoid pairs need >= R_i + R_j + d_s;
 //   * force_max > mu * mass * gravity for every robot;
-//   * an object nothing can push keeps its start (core/model/reachability.h, kUntouched).
+//   * an object nothing can push keeps its start (core/model/reachability.h, kUntouched);
+//   * no disk starts inside an obstacle (nor closer than an avoid pair's safe_distance); a
+//     wall has distinct ends; an obstacle is a disk or a wall; a moving one is not contact.
 // Optional sections (defaults, pairs, pairs.overrides, target) may be written empty (null).
 //
 // Overrides ("--set" on the command line, without the "scene." prefix) are "KEY=VALUE"

@@ -12,6 +12,7 @@
 #include "core/model/floor_friction.h"
 #include "core/model/gap.h"
 #include "core/model/lower_bound.h"
+#include "core/model/obstacles.h"
 #include "core/util/provenance.h"
 
 namespace disco {
@@ -72,18 +73,20 @@ json solution_json(const RobotProblem& problem, const Vector& z, const SolutionI
   const State unit{u.length, u.length, 1.0, u.velocity(), u.velocity(), 1.0 / u.time};
   auto value = [&](const Affine& a) { return a.value(z); };
   const int nr = static_cast<int>(si.robots.size());
-  const int np = static_cast<int>(si.pairs.size());
+  const int np = L.num_pairs();
 
   // Contact forces and torques on each robot, in model units, per step.
   std::vector<std::vector<std::array<double, 3>>> contact(
       nr, std::vector<std::array<double, 3>>(N, {0.0, 0.0, 0.0}));
-  json pairs = json::array();
+  json pairs = json::array(), obstacle_pairs = json::array();
   for (int p = 0; p < np; ++p) {
-    const Pair& pr = si.pairs[p];
+    // The scene's own pair (SI: safe_distance in metres), not the model's.
+    const Pair& pr = L.with_obstacle(p) ? si.obstacle_pairs[p - si.pairs.size()] : si.pairs[p];
+    const int j = L.other_disk(p);  // -1: an obstacle
     json jp = {{"i", pr.i},
                {"j", pr.j},
                {"robot_i", si.robots[pr.i].name},
-               {"robot_j", si.robots[pr.j].name},
+               {j >= 0 ? "robot_j" : "obstacle", j >= 0 ? si.robots[j].name : si.obstacles[pr.j].name},
                {"mode", pr.mode == PairMode::kContact ? "contact" : "avoid"},
                {"safe_distance", pr.safe_distance},
                {"mu", pr.mu}};
@@ -96,19 +99,32 @@ json solution_json(const RobotProblem& problem, const Vector& z, const SolutionI
         fn[t] = f.normal * u.force();
         ft[t] = f.tangential * u.force();
         for (int a = 0; a < 2; ++a) {
-          contact[pr.j][t][a] += f.on_j[a];
+          if (j >= 0) contact[j][t][a] += f.on_j[a];
           contact[pr.i][t][a] -= f.on_j[a];
         }
-        contact[pr.j][t][2] += f.torque_j;
+        if (j >= 0) contact[j][t][2] += f.torque_j;
         contact[pr.i][t][2] += f.torque_i;
       }
       jp["gap"] = gap;
       jp["normal_force"] = fn;
       jp["tangential_force"] = ft;
+      if (j < 0) {  // between the states, where the rows do not look (core/model/obstacles.h)
+        const Obstacle& ob = si.obstacles[pr.j];
+        const double h = value(L.step()) * u.time;
+        std::vector<double> swept(N);
+        for (int t = 0; t < N; ++t) {
+          auto centre = [&](int k) {
+            return std::array<double, 2>{value(L.state(pr.i, k, kX)) * u.length, value(L.state(pr.i, k, kY)) * u.length};
+          };
+          swept[t] = swept_distance(ob, centre(t), centre(t + 1), t * h, (t + 1) * h) - si.robots[pr.i].radius - ob.radius;
+        }
+        jp["swept_gap"] = swept;
+      }
     } else {
       jp["gap"] = jp["normal_force"] = jp["tangential_force"] = nullptr;
+      if (j < 0) jp["swept_gap"] = nullptr;
     }
-    pairs.push_back(jp);
+    (j >= 0 ? pairs : obstacle_pairs).push_back(jp);
   }
 
   json robots = json::array();
@@ -157,6 +173,17 @@ json solution_json(const RobotProblem& problem, const Vector& z, const SolutionI
   }
   doc["robots"] = robots;
   doc["pairs"] = pairs;
+  json obstacles = json::array();
+  for (const Obstacle& ob : si.obstacles) {
+    const bool wall = ob.shape == ObstacleShape::kWall;
+    json jo = {{"name", ob.name}, {"shape", wall ? "wall" : "disk"}, {"radius", ob.radius}};
+    jo[wall ? "from" : "centre"] = {ob.from[0], ob.from[1]};
+    if (wall) jo["to"] = {ob.to[0], ob.to[1]};
+    else jo["velocity"] = {ob.velocity[0], ob.velocity[1]};
+    obstacles.push_back(jo);
+  }
+  doc["obstacles"] = obstacles;
+  doc["obstacle_pairs"] = obstacle_pairs;
   return doc;
 }
 

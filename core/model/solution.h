@@ -19,6 +19,15 @@
 //     normal_force (N_t: push of i on j along the unit vector from i's centre to j's),
 //     tangential_force (N_t: i's force on j along that unit vector turned +90 degrees);
 //     the force on i is the opposite;
+//   obstacles[]: name, shape ("disk" or "wall"), radius (a wall: half its thickness); a disk:
+//     centre (at t = 0) and velocity (constant; its centre at t_k is centre + t_k velocity);
+//     a wall: from, to (its ends);
+//   obstacle_pairs[]: i, j (indices into robots and obstacles), robot_i, obstacle, mode,
+//     safe_distance, mu, gap, normal_force, tangential_force: as pairs[], with the
+//     obstacle as member j (nothing moves it; its force on i is the opposite of j's);
+//     swept_gap (N_t: the least gap while the disk moves straight from state t to t+1,
+//     core/model/obstacles.h swept_distance; below 0 the disk passed through the obstacle
+//     between two states: raise steps);
 //   provenance (added by disco solve and disco search, provenance_json): mode ("solve" or
 //     "search"), scene_file, scene_sha256 (of the file's bytes), scene_overrides (applied to the
 //     scene: a benchmark entry's `set`, then --set scene.*, without the prefix), overrides (the

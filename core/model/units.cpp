@@ -39,6 +39,15 @@ Scene to_model_units(const Scene& scene, const Units& u) {
     }
   }
   for (auto& p : s.pairs) p.safe_distance /= u.length;
+  for (auto& p : s.obstacle_pairs) p.safe_distance /= u.length;
+  for (auto& ob : s.obstacles) {
+    for (int a = 0; a < 2; ++a) {
+      ob.from[a] /= u.length;
+      ob.to[a] /= u.length;
+      ob.velocity[a] /= u.velocity();
+    }
+    ob.radius /= u.length;
+  }
   return s;
 }
 

@@ -18,9 +18,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from PIL import Image  # noqa: E402
 
-from viz.snapshots import (BLACK, DPI, OBJECT_HATCH, WHITE, blend, draw_target,  # noqa: E402
-                           finish_axes, robot_colors)
-from viz.solution_file import contacts_at, default_contact_threshold, state_at  # noqa: E402
+from viz.snapshots import (BLACK, DPI, OBJECT_HATCH, OBSTACLE_EDGE, OBSTACLE_FACE,  # noqa: E402
+                           WHITE, blend, draw_obstacles, draw_target, finish_axes, robot_colors)
+from viz.solution_file import (contacts_at, default_contact_threshold, moves,  # noqa: E402
+                               obstacle_at, state_at)
 
 
 def frame_plan(T_f, fps, max_frames):
@@ -61,6 +62,14 @@ def write_gif(sol, out, fps=20, max_frames=160, size=(720, 540)):
         heads.append(ax.plot([], [], color=blend(c, BLACK, 0.35), lw=2.0,
                              solid_capstyle="round", zorder=3.1)[0])
     contacts = ax.plot([], [], ls="none", marker="o", ms=6, mfc="red", mec="black", zorder=10)[0]
+    still = [ob for ob in sol.get("obstacles", []) if not moves(ob)]
+    draw_obstacles(ax, dict(sol, obstacles=still), 0.0)
+    runners = [ob for ob in sol.get("obstacles", []) if moves(ob)]
+    runner_disks = []
+    for ob in runners:
+        runner_disks.append(plt.Circle(obstacle_at(ob, 0.0), ob["radius"], facecolor=OBSTACLE_FACE,
+                                       edgecolor=OBSTACLE_EDGE, lw=1.0, zorder=1.6))
+        ax.add_patch(runner_disks[-1])
     finish_axes(ax, sol)
     ax.set_xlabel("x [m]", fontsize=9)
     ax.set_ylabel("y [m]", fontsize=9)
@@ -77,11 +86,13 @@ def write_gif(sol, out, fps=20, max_frames=160, size=(720, 540)):
             r = rob["radius"]
             head.set_data([x, x + r * math.cos(phi)], [y, y + r * math.sin(phi)])
             trail.set_data(rob["x"][:upto + 1] + [x], rob["y"][:upto + 1] + [y])
+        for ob, disk in zip(runners, runner_disks):
+            disk.center = obstacle_at(ob, t)
         pts = contacts_at(sol, t, h, thr, poses)
         contacts.set_data([p[0] for p in pts], [p[1] for p in pts])
         title.set_text(f"{sol['scenario']}: t = {t:5.2f} s of {T_f:.2f} s ({playback})")
 
-    moving = trails + disks + heads + [contacts, title]  # in z-order
+    moving = runner_disks + trails + disks + heads + [contacts, title]  # in z-order
     try:
         for a in moving:
             a.set_animated(True)

@@ -11,10 +11,10 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib import patheffects  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
-from matplotlib.patches import Patch  # noqa: E402
+from matplotlib.patches import Patch, Polygon  # noqa: E402
 
 from viz.solution_file import (all_contacts, bounds, contacts_at,  # noqa: E402
-                               default_contact_threshold, state_at)
+                               default_contact_threshold, moves, obstacle_at, state_at)
 
 DPI = 100
 
@@ -62,6 +62,45 @@ def draw_disk(ax, x, y, phi, r, color, frac, z, label=None, obj=False):
         lx, ly = x - 0.45 * r * math.cos(phi), y - 0.45 * r * math.sin(phi)
         ax.text(lx, ly, label, ha="center", va="center", fontsize=9,
                 color="black" if frac < 0.75 else "white", zorder=z + 0.002)
+
+
+OBSTACLE_FACE, OBSTACLE_EDGE = (0.62, 0.62, 0.62), (0.25, 0.25, 0.25)
+
+
+def capsule(a, b, r, n=16):
+    """The outline of the points within r of the segment a-b (a wall), as a polygon."""
+    ang = math.atan2(b[1] - a[1], b[0] - a[0])
+    pts = []
+    for (cx, cy), start in ((b, ang - math.pi / 2), (a, ang + math.pi / 2)):
+        pts += [(cx + r * math.cos(start + math.pi * k / n), cy + r * math.sin(start + math.pi * k / n))
+                for k in range(n + 1)]
+    return pts
+
+
+def draw_obstacles(ax, sol, t, frac=1.0, path=False, label=None):
+    """The obstacles at time t: solid grey, walls as capsules (a line when they have no
+    thickness), disks as circles; a moving disk faded by frac like the robots' snapshots,
+    and with path=True its whole way over [0, T_f] dotted."""
+    for ob in sol.get("obstacles", []):
+        if ob["shape"] == "wall":
+            if ob["radius"] > 0:
+                ax.add_patch(Polygon(capsule(ob["from"], ob["to"], ob["radius"]), closed=True,
+                                     facecolor=OBSTACLE_FACE, edgecolor=OBSTACLE_EDGE, lw=1.0,
+                                     zorder=1.5))
+            else:
+                ax.plot([ob["from"][0], ob["to"][0]], [ob["from"][1], ob["to"][1]],
+                        color=OBSTACLE_EDGE, lw=2.5, solid_capstyle="round", zorder=1.5)
+            continue
+        x, y = obstacle_at(ob, t)
+        face = blend(OBSTACLE_FACE, WHITE, shade(frac)) if moves(ob) else OBSTACLE_FACE
+        ax.add_patch(plt.Circle((x, y), ob["radius"], facecolor=face, edgecolor=OBSTACLE_EDGE,
+                                lw=1.0, zorder=1.6))
+        if label and moves(ob):  # the snapshot's number, as on the robots
+            ax.text(x, y, label, ha="center", va="center", fontsize=9, zorder=1.7,
+                    color="white" if frac > 0.6 else "black")
+        if path and moves(ob) and sol["T_f"]:
+            (x0, y0), (x1, y1) = obstacle_at(ob, 0.0), obstacle_at(ob, sol["T_f"])
+            ax.plot([x0, x1], [y0, y1], ls=":", lw=1.2, color=OBSTACLE_EDGE, zorder=1.4)
 
 
 # A white edge around a target's dashes and cross: they stay visible over a disk of the same
@@ -125,6 +164,8 @@ def legend_handles(sol, colors, contact_any, contact_snap):
                 label=r["name"] + " (object)") if r.get("object") else
           Line2D([], [], color=c, lw=1.5, marker="o", ms=8, mfc=blend(c, WHITE, 0.4), mec=c,
                  label=r["name"]) for r, c in zip(sol["robots"], colors)]
+    if sol.get("obstacles"):
+        hs.append(Patch(facecolor=OBSTACLE_FACE, edgecolor=OBSTACLE_EDGE, label="obstacle"))
     hs.append(Line2D([], [], ls="none", marker="o", ms=4, color="0.2", label="start"))
     hs.append(Line2D([], [], ls="--", marker="x", ms=7, color="0.2", label="target"))
     if contact_snap:
@@ -149,10 +190,14 @@ def overlay(sol, times, thr, size, title_extra):
             ax.plot(rob["x"], rob["y"], color=c, lw=1.0, zorder=1.8)  # seen through the disks
         ax.plot([x0], [y0], marker="o", ms=4, color=blend(c, BLACK, 0.3), zorder=9)
         draw_target(ax, rob, c)
+    fixed = [ob for ob in sol.get("obstacles", []) if not moves(ob)]
+    draw_obstacles(ax, dict(sol, obstacles=fixed), 0.0)
     if has_traj:
         h = sol["T_f"] / sol["N_t"]
         for k, t in enumerate(times):
             frac = k / (n - 1) if n > 1 else 1.0
+            draw_obstacles(ax, dict(sol, obstacles=[ob for ob in sol.get("obstacles", []) if moves(ob)]),
+                           t, frac, path=k == 0, label=str(k + 1))
             poses = [state_at(r, t, h, sol["N_t"]) for r in sol["robots"]]
             for rob, c, (x, y, phi) in zip(sol["robots"], colors, poses):
                 draw_disk(ax, x, y, phi, rob["radius"], c, frac, 2 + 0.01 * k, str(k + 1),
@@ -223,6 +268,7 @@ def panels(sol, times, thr, size, title_extra):
                     color="red", zorder=9.5)
         poses = [state_at(r, t, h, sol["N_t"]) for r in sol["robots"]]
         upto = min(sol["N_t"], int(math.floor(t / h + 1e-9)))
+        draw_obstacles(ax, sol, t, path=True)
         for rob, c, (x, y, phi) in zip(sol["robots"], colors, poses):
             ax.plot(rob["x"], rob["y"], color=c, lw=0.8, alpha=0.3, zorder=1)
             ax.plot(rob["x"][:upto + 1] + [x], rob["y"][:upto + 1] + [y], color=c, lw=1.2,

@@ -168,6 +168,7 @@ def load(path, full=False):
             pair["safe_distance"] = number(need(p, "safe_distance", w), f"{w}.safe_distance")
             pair["mu"] = number(need(p, "mu", w), f"{w}.mu")
         sol["pairs"].append(pair)
+    sol["obstacles"] = read_obstacles(doc)
     if full:
         sol["g"] = number(need(doc, "g", ""), "g")
         sol["status_detail"] = str(doc.get("status_detail", ""))
@@ -179,7 +180,39 @@ def load(path, full=False):
     return sol
 
 
+def read_obstacles(doc):
+    """The file's obstacles (none in files written before disco had them): name, shape
+    ("disk" or "wall"), radius, and a disk's centre and velocity or a wall's ends."""
+    obstacles = doc.get("obstacles", [])
+    if not isinstance(obstacles, list):
+        raise BadInput("'obstacles' is not a list")
+    out = []
+    for k, o in enumerate(obstacles):
+        w = f"obstacles[{k}]"
+        shape = need(o, "shape", w)
+        if shape not in ("disk", "wall"):
+            raise BadInput(f"'{w}.shape' is {json.dumps(shape)}, expected \"disk\" or \"wall\"")
+        ob = {"name": str(need(o, "name", w)), "shape": shape,
+              "radius": number(need(o, "radius", w), f"{w}.radius")}
+        for key in (("from", "to") if shape == "wall" else ("centre", "velocity")):
+            v = need(o, key, w)
+            if not isinstance(v, list) or len(v) != 2:
+                raise BadInput(f"'{w}.{key}' is not a list [x, y]")
+            ob[key] = [number(c, f"{w}.{key}[{a}]") for a, c in enumerate(v)]
+        out.append(ob)
+    return out
+
+
 # --- geometry ---------------------------------------------------------------------------------
+
+def obstacle_at(ob, t):
+    """A disk obstacle's centre at time t (it moves at constant velocity from t = 0)."""
+    return (ob["centre"][0] + t * ob["velocity"][0], ob["centre"][1] + t * ob["velocity"][1])
+
+
+def moves(ob):
+    return ob["shape"] == "disk" and any(v != 0.0 for v in ob["velocity"])
+
 
 def state_at(rob, t, h, n_t):
     """(x, y, phi) at time t, linear between the stored states."""
@@ -248,6 +281,13 @@ def bounds(sol):
         for v, acc in ((xl, xs), (xh, xs), (yl, ys), (yh, ys)):
             if v is not None:
                 acc += [v - rad, v + rad]
+    T_f = sol["T_f"] or 0.0
+    for ob in sol.get("obstacles", []):
+        rad = ob["radius"]
+        ends = (ob["from"], ob["to"]) if ob["shape"] == "wall" else (obstacle_at(ob, 0.0), obstacle_at(ob, T_f))
+        for (x, y) in ends:
+            xs += [x - rad, x + rad]
+            ys += [y - rad, y + rad]
     pad = 0.05 * max(max(xs) - min(xs), max(ys) - min(ys)) + 0.1
     return min(xs) - pad, max(xs) + pad, min(ys) - pad, max(ys) + pad
 
