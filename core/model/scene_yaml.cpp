@@ -506,10 +506,10 @@ Pair pair_defaults(const Doc& doc, const YAML::Node& n) {
   return base;
 }
 
-std::vector<Pair> read_pairs(const Doc& doc, const YAML::Node& n,
+// Scene::pairs from the `pairs` defaults (`base`, pair_defaults) and `pairs.overrides`.
+std::vector<Pair> read_pairs(const Doc& doc, const YAML::Node& n, const Pair& base,
                              const std::vector<Robot>& robots) {
   const auto fields = doc.mapping(n, "pairs", kPairsKeys, true);
-  const Pair base = pair_defaults(doc, n);
   const int count = static_cast<int>(robots.size());
   std::vector<Pair> pairs;
   std::map<std::pair<int, int>, std::size_t> slot;  // (i, j) -> index in `pairs`
@@ -682,17 +682,16 @@ void check_obstacle_clearance(const Doc& doc, const DiskNodes& nodes, const Scen
     const YAML::Node at = nodes.at(p.i)["start"];
     const std::string path = child(nodes.path(p.i), "start");
     const double touch = a.radius + ob.radius;
+    const std::string core = ob.shape == ObstacleShape::kWall ? "centre line" : "centre";
     if (dist < touch * (1 - kTouchTolerance))
       doc.fail(at, path,
-               what + " overlap at the start: the centre is " + show(dist) +
-                   " from the obstacle's " + (ob.shape == ObstacleShape::kWall ? "centre line" : "centre") +
-                   ", less than R + R_obstacle = " + show(touch));
+               what + " overlap at the start: the centre is " + show(dist) + " from the obstacle's " +
+                   core + ", less than R + R_obstacle = " + show(touch));
     const double clear = obstacle_clearance(scene, p);
     if (p.mode == PairMode::kAvoid && dist < clear * (1 - kTouchTolerance))
       doc.fail(at, path,
                what + " (an avoid pair) start too close: the centre is " + show(dist) +
-                   " from the obstacle's " + (ob.shape == ObstacleShape::kWall ? "centre line" : "centre") +
-                   ", less than R + R_obstacle + safe_distance = " + show(clear) +
+                   " from the obstacle's " + core + ", less than R + R_obstacle + safe_distance = " + show(clear) +
                    " (move it, lower the obstacle's safe_distance or use mode contact)");
   }
 }
@@ -775,11 +774,12 @@ Scene validate(const Doc& doc, const YAML::Node& root, const std::string& source
   }
   const auto pairs_it = fields.find("pairs");
   const YAML::Node pairs = pairs_it == fields.end() ? YAML::Node() : pairs_it->second;
-  scene.pairs = read_pairs(doc, pairs, scene.robots);
+  const Pair base = pair_defaults(doc, pairs);
+  scene.pairs = read_pairs(doc, pairs, base, scene.robots);
   YAML::Node obstacles;
   if (const auto it = fields.find("obstacles"); it != fields.end()) {
     obstacles = it->second;
-    read_obstacles(doc, obstacles, pair_defaults(doc, pairs), scene);
+    read_obstacles(doc, obstacles, base, scene);
   }
   check_start_clearance(doc, nodes, scene);
   check_obstacle_clearance(doc, nodes, scene);

@@ -111,13 +111,12 @@ json solution_json(const RobotProblem& problem, const Vector& z, const SolutionI
       if (j < 0) {  // between the states, where the rows do not look (core/model/obstacles.h)
         const Obstacle& ob = si.obstacles[pr.j];
         const double h = value(L.step()) * u.time;
+        auto centre = [&](int k) {
+          return std::array<double, 2>{value(L.state(pr.i, k, kX)) * u.length, value(L.state(pr.i, k, kY)) * u.length};
+        };
         std::vector<double> swept(N);
-        for (int t = 0; t < N; ++t) {
-          auto centre = [&](int k) {
-            return std::array<double, 2>{value(L.state(pr.i, k, kX)) * u.length, value(L.state(pr.i, k, kY)) * u.length};
-          };
+        for (int t = 0; t < N; ++t)
           swept[t] = swept_distance(ob, centre(t), centre(t + 1), t * h, (t + 1) * h) - si.robots[pr.i].radius - ob.radius;
-        }
         jp["swept_gap"] = swept;
       }
     } else {
