@@ -14,18 +14,18 @@ namespace {
 using json = nlohmann::json;
 
 // "solved T_f 2.294182", "time limit (search, 20 s): T_f 2.380710 so far",
-// "interrupted: no point yet", "infeasible".
+// "interrupted: no point yet", "infeasible"; for another objective "solved J 3.5 (T_f 2 s)".
 std::string outcome_words(const StartOutcome& o) {
-  const std::string so_far =
-      o.certified() ? fmt::format("T_f {:.6f} so far", o.T_f) : std::string("no point yet");
+  const std::string value = o.value == o.T_f ? fmt::format("T_f {:.6f}", o.T_f)
+                                             : fmt::format("J {:.6g} (T_f {:.6f} s)", o.value, o.T_f);
+  const std::string so_far = o.certified() ? value + " so far" : std::string("no point yet");
   switch (o.status) {
-    case StartStatus::kSolved: return fmt::format("solved T_f {:.6f}", o.T_f);
+    case StartStatus::kSolved: return "solved " + value;
     case StartStatus::kTimeLimit:
       return fmt::format("time limit ({}, {:.0f} s): {}", to_string(o.budget_source), o.budget, so_far);
     case StartStatus::kInterrupted: return "interrupted: " + so_far;
     case StartStatus::kDominated:
-      return fmt::format("dominated at T_f {:.6f} (another start reached {:.6f})", o.T_f,
-                         o.incumbent);
+      return fmt::format("dominated at {} (another start reached {:.6f})", value, o.incumbent);
     default: return to_string(o.status);
   }
 }
@@ -50,13 +50,13 @@ Coordinator::Coordinator(const SearchPlan& plan, const std::string& out_dir, std
       incumbent_(plan.scenes.size(), kInf),
       improved_(plan.scenes.size(), false) {
   for (std::size_t s = 0; s < plan.scenes.size(); ++s)  // a resumed run's bests
-    if (const auto b = record_.best_T_f(static_cast<int>(s))) lower_incumbent(static_cast<int>(s), *b);
+    if (const auto b = record_.best_value(static_cast<int>(s))) lower_incumbent(static_cast<int>(s), *b);
   record_.write_best(queue_, seconds(), interrupt_requested());
 }
 
-void Coordinator::lower_incumbent(int s, double T_f) {
-  if (!share_ || s < 0 || !(T_f < incumbent_[s])) return;
-  incumbent_[s] = T_f;
+void Coordinator::lower_incumbent(int s, double value) {
+  if (!share_ || s < 0 || !(value < incumbent_[s])) return;
+  incumbent_[s] = value;
   improved_[s] = true;
 }
 
@@ -65,14 +65,14 @@ double Coordinator::incumbent(int scene) {
   return incumbent_[scene];
 }
 
-void Coordinator::progress(int scene, double T_f) {
+void Coordinator::progress(int scene, double value) {
   std::lock_guard<std::mutex> lock(mutex_);
-  lower_incumbent(scene, T_f);
+  lower_incumbent(scene, value);
 }
 
 void Coordinator::on_progress(const std::string& body) {
   const json msg = json::parse(body);
-  progress(msg.at("scene").get<int>(), msg.at("T_f").get<double>());
+  progress(msg.at("scene").get<int>(), msg.at("value").get<double>());
 }
 
 std::vector<Coordinator::Outgoing> Coordinator::take_outbox() {
@@ -81,7 +81,7 @@ std::vector<Coordinator::Outgoing> Coordinator::take_outbox() {
   for (const auto& [task, r] : queue_.running())
     if (improved_[task.first] && r.rank != 0)
       out.push_back({r.rank, MessageKind::kIncumbent,
-                     json{{"scene", task.first}, {"T_f", incumbent_[task.first]}}.dump()});
+                     json{{"scene", task.first}, {"value", incumbent_[task.first]}}.dump()});
   std::fill(improved_.begin(), improved_.end(), false);
   return out;
 }
@@ -111,7 +111,7 @@ void Coordinator::record(StartOutcome o, const json* solution) {
   const int s = scene_index(o.scene);
   if (s >= 0) queue_.finished(s, o.start);
   record_.record(o, solution, now, s >= 0 ? queue_.scene_started(s) : 0.0);
-  if (o.certified()) lower_incumbent(s, o.T_f);
+  if (o.certified()) lower_incumbent(s, o.value);
   record_.write_best(queue_, now, interrupt_requested());
   spdlog::info("[{}/{}] {} start {} (rank {}): {} in {:.1f} s | best {} | {}", record_.finished(),
                queue_.total(), o.scene, o.start, o.rank, outcome_words(o), o.seconds,

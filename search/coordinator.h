@@ -63,13 +63,14 @@ class Coordinator {
   };
   Reply on_result(int rank, const std::string& body);
 
-  // Scene `scene`'s incumbent (s; +inf: none, or not shared).
+  // Scene `scene`'s incumbent: its best certified J (T_f in s for objective time;
+  // core/model/objective.h); +inf: none, or not shared.
   double incumbent(int scene);
-  // A start still running found a certified T_f for scene `scene` (s).
-  void progress(int scene, double T_f);
-  // A worker's kProgress message: {"scene": index, "start": k, "T_f": seconds}.
+  // A start still running found a certified J for scene `scene`.
+  void progress(int scene, double value);
+  // A worker's kProgress message: {"scene": index, "start": k, "value": J}.
   void on_progress(const std::string& body);
-  // The kIncumbent messages to send now: {"scene": index, "T_f": seconds} to each worker rank
+  // The kIncumbent messages to send now: {"scene": index, "value": J} to each worker rank
   // running a start of a scene whose incumbent improved since the last call.
   struct Outgoing {
     int to = 0;
@@ -97,8 +98,8 @@ class Coordinator {
   std::string clock_locked() const;  // "elapsed HH:MM:SS ETA HH:MM:SS"
   int scene_index(const std::string& name) const;
 
-  // Lowers scene s's incumbent to T_f if that is lower (and marks it for take_outbox()).
-  void lower_incumbent(int s, double T_f);
+  // Lowers scene s's incumbent to `value` if that is lower (and marks it for take_outbox()).
+  void lower_incumbent(int s, double value);
 
   const SearchPlan& plan_;
   const bool share_;
@@ -106,7 +107,7 @@ class Coordinator {
   std::mutex mutex_;
   SearchRecord record_;
   TaskQueue queue_;
-  std::vector<double> incumbent_;  // per scene, s (+inf: none)
+  std::vector<double> incumbent_;  // per scene, J (+inf: none)
   std::vector<bool> improved_;     // per scene: incumbent lowered since take_outbox()
 };
 

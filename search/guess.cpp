@@ -480,7 +480,8 @@ Perturbation perturb_feasible(const RobotProblem& problem, const StartSpec& star
 }
 
 PerturbFunction make_perturbation(const RobotProblem& problem, const StartSpec& start) {
-  if (start.guess != GuessKind::kPerturbedFeasible) return {};
+  // A scene that fixes T_f (objective energy) has no other horizon to perturb to.
+  if (start.guess != GuessKind::kPerturbedFeasible || problem.horizon_is_fixed()) return {};
   return [&problem, start](const Vector& feasible) {
     return perturb_feasible(problem, start, feasible);
   };

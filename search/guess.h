@@ -158,7 +158,8 @@ Vector make_guess(const RobotProblem& problem, const StartSpec& start, double se
 Perturbation perturb_feasible(const RobotProblem& problem, const StartSpec& start,
                               const Vector& feasible);
 // The PerturbFunction for reduce_objective: perturb_feasible for a kPerturbedFeasible
-// start, empty (no step 1b) for every other kind. `problem` must outlive the function.
+// start, empty (no step 1b) for every other kind and when the scene fixes T_f (objective
+// energy). `problem` must outlive the function.
 PerturbFunction make_perturbation(const RobotProblem& problem, const StartSpec& start);
 
 }  // namespace disco

@@ -8,6 +8,7 @@
 
 #include <spdlog/fmt/fmt.h>
 
+#include "core/model/objective.h"
 #include "core/util/interrupt.h"
 #include "core/config/solver_settings.h"
 #include "core/util/check.h"
@@ -23,15 +24,16 @@ constexpr double kInsideBound = 1e-6;
 // A new best must be this much (relative) below the old one.
 constexpr double kBetter = 1e-7;
 
-// How a step bounds the horizon.
-enum class Horizon {
-  kFixed,  // T_f = seconds
-  kBound,  // T_f <= seconds
+// What a step fixes or bounds.
+enum class Bound {
+  kHorizon,  // T_f = value (seconds; the feasibility phases), J free
+  kFixed,    // J = value (for objective time: T_f = value)
+  kUpper,    // J <= value
 };
 // One elastic-mode solve of the reduction, as data.
 struct StepRequest {
-  Horizon horizon = Horizon::kBound;
-  double seconds = 0.0;
+  Bound bound = Bound::kUpper;
+  double value = 0.0;
   int iteration_limit = 0;  // per Ipopt solve; 0 = none
 };
 
@@ -59,18 +61,21 @@ struct Reduction {
                             std::chrono::duration<double>(cfg.time_limit));
     return r;
   }
-  // The elastic MPCC under the request's horizon, from a point or a result (warm).
+  // The elastic MPCC under the request's bound, from a point or a result (warm).
   template <class From>
   MpccResult step(const StepRequest& q, const From& from) {
-    if (q.horizon == Horizon::kFixed)
-      problem.fix_horizon(q.seconds);
-    else
-      problem.limit_horizon(q.seconds);
+    if (q.bound == Bound::kHorizon) {
+      problem.free_objective();
+      problem.fix_horizon(q.value);
+    } else {
+      problem.bound_objective(q.value, q.bound == Bound::kFixed);
+    }
     return solver.solve(problem.program(), from, request(q.iteration_limit));
   }
   void record(SolveKind kind, double bound, const MpccResult& r, bool improved) {
-    SolveRecord rec{kind, bound, problem.horizon(r.z), r.status, r.outcome, r.ipopt_status,
-                    r.certificate, r.nlp_solves, r.iterations, r.seconds, improved};
+    SolveRecord rec{kind,     bound,        problem.horizon(r.z), problem.objective(r.z),
+                    r.status, r.outcome,    r.ipopt_status,       r.certificate,
+                    r.nlp_solves, r.iterations, r.seconds,        improved};
     out.solves.push_back(rec);
     out.nlp_solves += r.nlp_solves;
     out.iterations += r.iterations;
@@ -83,14 +88,14 @@ struct Reduction {
   // converged minimisation under T_f <= bound (elastic, or a branch descent that ended
   // B-stationary); with its T_f strictly inside the bound, r is stationary for min T_f.
   void take_best(MpccResult&& r, bool minimum = false, double bound = 0.0) {
-    const bool stationary = minimum && problem.horizon(r.z) < bound * (1.0 - kInsideBound);
+    const bool stationary = minimum && problem.objective(r.z) < bound * (1.0 - kInsideBound);
     out.stationarity = !stationary     ? Stationarity::kFeasible
                        : r.b_stationary ? Stationarity::kB
                                         : Stationarity::kStrong;
     out.best = std::move(r);
-    out.T_best = problem.horizon(out.best.z);
+    out.best_value = problem.objective(out.best.z);
     out.time_to_best = elapsed();
-    out.history.push_back({out.time_to_best, out.T_best});
+    out.history.push_back({out.time_to_best, out.best_value});
   }
 
   // Minimise T_f <= T_best from the best point (step 3 and its early call), by
@@ -100,9 +105,9 @@ struct Reduction {
       branch_descent();
       return true;  // a descent stops at a local optimum, or at the time limit
     }
-    const double bound = out.T_best;
-    MpccResult r = step({Horizon::kBound, bound, iteration_limit}, out.best);
-    const bool improved = r.solved() && problem.horizon(r.z) < bound;
+    const double bound = out.best_value;
+    MpccResult r = step({Bound::kUpper, bound, iteration_limit}, out.best);
+    const bool improved = r.solved() && problem.objective(r.z) < bound;
     record(SolveKind::kMinimize, bound, r, improved);
     const bool converged = r.solved();
     if (improved) take_best(std::move(r), converged, bound);
@@ -111,11 +116,11 @@ struct Reduction {
 
   // A branch descent from `from` (certified or not) under T_f <= T_best; true if it improved.
   bool branch(const MpccResult& from) {
-    const double bound = out.T_best;
-    problem.limit_horizon(bound);
+    const double bound = out.best_value;
+    problem.bound_objective(bound, false);
     MpccResult r =
         solver.solve_branch(problem.program(), from, cfg.flip_rounds, request(0));
-    const bool improved = r.solved() && problem.horizon(r.z) < bound * (1.0 - kBetter);
+    const bool improved = r.solved() && problem.objective(r.z) < bound * (1.0 - kBetter);
     record(SolveKind::kBranch, bound, r, improved);
     if (improved) take_best(std::move(r), r.b_stationary, bound);
     return improved;
@@ -123,8 +128,8 @@ struct Reduction {
   // One segment of the elastic minimisation: at most step_iterations Ipopt iterations from
   // `from` under T_f <= bound; the second member says whether it gave a new best.
   std::pair<MpccResult, bool> segment(const MpccResult& from, double bound) {
-    MpccResult r = step({Horizon::kBound, bound, cfg.step_iterations}, from);
-    const bool improved = r.solved() && problem.horizon(r.z) < out.T_best * (1.0 - kBetter);
+    MpccResult r = step({Bound::kUpper, bound, cfg.step_iterations}, from);
+    const bool improved = r.solved() && problem.objective(r.z) < out.best_value * (1.0 - kBetter);
     record(SolveKind::kMinimize, bound, r, improved);
     if (improved) take_best(MpccResult(r), true, bound);  // improved: converged
     return {std::move(r), improved};
@@ -136,7 +141,7 @@ struct Reduction {
     // feasible point commits to the branch of a slow motion: on paper A1 the elastic
     // minimisation from there ended 2 % above the optimum it reaches from the feasible point.)
     {
-      auto [r, improved] = segment(out.best, out.T_best);
+      auto [r, improved] = segment(out.best, out.best_value);
       if (!out_of_time()) branch(r);
       if (r.solved()) return;
     }
@@ -146,12 +151,12 @@ struct Reduction {
     // its point (the smaller side of every pair fixed: even at complementarity 3e-2 that was
     // the branch of a new best, on three_robots_contact).
     MpccResult from = out.best;
-    double T_from = out.T_best;
+    double T_from = out.best_value;
     int idle = 0;  // segments in a row that gave no new best
     for (int k = 0; k < cfg.max_solves && !out_of_time(); ++k) {
       auto [r, better] = segment(from, T_from);
-      T_from = problem.horizon(r.z);
-      if (!out_of_time() && T_from < out.T_best) better = branch(r) || better;
+      T_from = problem.objective(r.z);
+      if (!out_of_time() && T_from < out.best_value) better = branch(r) || better;
       // A segment that converged (certified) is a local optimum of the elastic program.
       if (r.solved() || r.status == MpccStatus::kInfeasible) break;
       // Not tight: raising zeta no longer moves it, and the next segment starts where it ended.
@@ -166,6 +171,7 @@ struct Reduction {
 
 
 double feasibility_horizon(const RobotProblem& problem, const ReductionSettings& cfg) {
+  if (problem.horizon_is_fixed()) return problem.scene().objective.horizon;
   if (cfg.horizon > 0.0) return cfg.horizon;  // a start from a trajectory
   const auto scale = problem.reference_time();
   return scale ? std::max(cfg.horizon_min, cfg.horizon_factor * *scale) : cfg.horizon_min;
@@ -183,10 +189,16 @@ std::string to_string(SolveKind kind) {
   return "?";
 }
 
-std::string solve_log_header() {
-  return fmt::format("{:>3} {:<18} {:>10} {:>10} {:<17} {:>9} {:>9} {:>4} {:>5} {:>7}", "#",
-                     "phase", "bound[s]", "T_f[s]", "ended", "compl", "viol", "nlp", "iter",
-                     "sec");
+std::string solve_log_header(ObjectiveKind kind) {
+  // Time: the bound and T_f; otherwise the bound on J, J and T_f.
+  const std::string J = kind == ObjectiveKind::kEnergy ? "E" : "T+wE";
+  const std::string unit = "[" + objective_unit(kind) + "]";
+  const std::string head =
+      kind == ObjectiveKind::kTime
+          ? fmt::format("{:>10} {:>10}", "bound[s]", "T_f[s]")
+          : fmt::format("{:>10} {:>10} {:>10}", "bound" + unit, J + unit, "T_f[s]");
+  return fmt::format("{:>3} {:<18} {} {:<17} {:>9} {:>9} {:>4} {:>5} {:>7}", "#", "phase", head,
+                     "ended", "compl", "viol", "nlp", "iter", "sec");
 }
 
 std::string solve_outcome_words(MpccStatus status, NlpOutcome outcome) {
@@ -205,11 +217,18 @@ std::string solve_outcome_words(MpccStatus status, NlpOutcome outcome) {
   }
 }
 
-std::string solve_log_line(int number, const SolveRecord& r) {
+std::string solve_log_line(int number, const SolveRecord& r, ObjectiveKind kind) {
   const std::string words = solve_outcome_words(r.status, r.outcome);
+  // A feasibility phase's bound is its fixed T_f, not a bound on J: "-" for another objective.
+  const bool on_J = r.kind != SolveKind::kFeasibility && r.kind != SolveKind::kPerturbedFeasibility;
+  const std::string values =
+      kind == ObjectiveKind::kTime
+          ? fmt::format("{:>10.5f} {:>10.5f}", r.bound, r.T_f)
+          : fmt::format("{:>10} {:>10.5g} {:>10.5f}", on_J ? fmt::format("{:.5g}", r.bound) : "-",
+                        r.value, r.T_f);
   return fmt::format(
-      "{:>3} {:<18} {:>10.5f} {:>10.5f} {:<17} {:>9.1e} {:>9.1e} {:>4} {:>5} {:>7.3f}{}", number,
-      (r.coarse ? "coarse " : "") + to_string(r.kind), r.bound, r.T_f, words, r.certificate.max_complementarity,
+      "{:>3} {:<18} {} {:<17} {:>9.1e} {:>9.1e} {:>4} {:>5} {:>7.3f}{}", number,
+      (r.coarse ? "coarse " : "") + to_string(r.kind), values, words, r.certificate.max_complementarity,
       r.certificate.max_violation, r.nlp_solves, r.iterations, r.seconds,
       r.improved ? std::string("  *")
       : words == "failed" || words == "invalid number"
@@ -227,15 +246,17 @@ ReductionResult reduce_objective(RobotProblem& problem, const ElasticSolver& sol
   // The phases (search/reduction_phases.h): each runs its solve, then asks where to go.
   PhaseOutcome o;  // facts carried from phase to phase (smallest, perturb)
   o.perturb = static_cast<bool>(perturb);
+  o.horizon_fixed = problem.horizon_is_fixed();
+  o.minimize_last = problem.objective_kind() != ObjectiveKind::kTime;
   ReductionState s = begin_reduction(cfg);
   for (; s.phase != Phase::kDone; s = next_phase(s, o, cfg)) {
     o.solved = o.improved = o.failed = o.inside_bound = false;
     switch (s.phase) {
       case Phase::kFeasibility: {  // 1. at a fixed, generous horizon (doubled per attempt)
         const double T = feasibility_horizon(problem, cfg) * std::pow(2.0, s.attempt);
-        problem.set_horizon_max(T);
+        problem.set_horizon_max(problem.horizon_reach(T));
         const Vector z0 = guess ? guess(T) : smoothstep_guess(problem, T);
-        const MpccResult r = run.step({Horizon::kFixed, T, 0}, z0);
+        const MpccResult r = run.step({Bound::kHorizon, T, 0}, z0);
         // A failure says why: the outcome of the last NLP solve (invalid number: an
         // evaluation gave NaN or Inf, which the Nlp wrapper turns into a failed callback).
         out.feasibility_detail = to_string(r.status);
@@ -252,22 +273,24 @@ ReductionResult reduce_objective(RobotProblem& problem, const ElasticSolver& sol
           // No step is asked below a valid lower bound, nor below the smallest horizon the
           // model allows (RobotProblem keeps h > 0): a fixed step there would leave T_best
           // outside the model's own bounds on T_f, so its point could not be certified on it.
-          problem.limit_horizon(kInf);
-          o.smallest = std::max(problem.lower_bound().value_or(0.0),
-                                problem.horizon(problem.program().variable_lower()));
+          problem.free_objective();
+          o.smallest = problem.objective_floor();
         }
         break;
       }
       case Phase::kPerturbed: {  // 1b. once more from a perturbation of the feasible point
         const Perturbation p = perturb(out.best.z);
-        DISCO_CHECK(p.seconds > 0.0 && p.seconds <= out.T_best,
+        DISCO_CHECK(!problem.horizon_is_fixed(), "no perturbed horizon when the scene fixes T_f");
+        DISCO_CHECK(p.seconds > 0.0 && p.seconds <= problem.horizon(out.best.z),
                     "a perturbation's horizon is positive and at most the feasible one");
         DISCO_CHECK(p.guess.size() == out.best.z.size(), "a perturbation's guess is a model point");
-        MpccResult r = run.step({Horizon::kFixed, p.seconds, 0}, p.guess);
-        o.solved = r.solved();
+        MpccResult r = run.step({Bound::kHorizon, p.seconds, 0}, p.guess);
+        // For time + energy a faster point may cost more: it must not raise J. (For time, J is
+        // its horizon, never above the feasible one.)
+        o.solved = r.solved() && problem.objective(r.z) <= out.best_value;
         run.record(s.phase, p.seconds, r, o.solved);
         if (o.solved) run.take_best(std::move(r));
-        problem.limit_horizon(kInf);
+        problem.free_objective();
         break;
       }
       case Phase::kMinimizingStep:
@@ -276,12 +299,12 @@ ReductionResult reduce_objective(RobotProblem& problem, const ElasticSolver& sol
         const double bound = step_bound(s, step_reference(o, cfg));
         const bool fixed = s.phase != Phase::kMinimizingStep;
         MpccResult r = run.step(
-            {fixed ? Horizon::kFixed : Horizon::kBound, bound, fixed ? 0 : cfg.step_iterations},
+            {fixed ? Bound::kFixed : Bound::kUpper, bound, fixed ? 0 : cfg.step_iterations},
             out.best);
-        const double T_f = problem.horizon(r.z);
+        const double T_f = problem.objective(r.z);  // J
         o.solved = r.solved();
         o.failed = r.status == MpccStatus::kFailed;
-        o.improved = o.solved && T_f < out.T_best;
+        o.improved = o.solved && T_f < out.best_value;
         o.inside_bound = T_f < bound * (1.0 - kInsideBound);
         run.record(s.phase, bound, r, o.improved);
         if (o.improved) run.take_best(std::move(r), s.phase == Phase::kMinimizingStep, bound);
@@ -293,12 +316,12 @@ ReductionResult reduce_objective(RobotProblem& problem, const ElasticSolver& sol
         break;
       case Phase::kDone: break;
     }
-    o.T_best = out.T_best;
+    o.best_value = out.best_value;
     o.out_of_time = run.out_of_time();
     if (incumbent) o.incumbent = incumbent();
   }
-  // Free the horizon again: the problem is the model itself for later users.
-  problem.limit_horizon(kInf);
+  // Free the objective again: the problem is the model itself for later users.
+  problem.free_objective();
   if (out.found) out.status = MpccStatus::kSolved;
   out.stop = s.stop == StopReason::kOutOfTime && interrupt_requested() ? StopReason::kInterrupted
                                                                        : s.stop;

@@ -67,6 +67,12 @@
 //   Measured (start 0, paper A3): the long minimisation after the fixed steps is replaced
 //   by a 60-iteration segment and a 16-iteration branch descent that lands on the same
 //   optimum 9.832592.
+// Another objective (core/model/objective.h: energy, time + energy): read J for T_f in every
+// bound, step and best above (RobotProblem::bound_objective); the feasibility phase still
+// fixes T_f itself (energy: at the scene's horizon, in one attempt, since T_f is not free)
+// and sets T_max to RobotProblem::horizon_reach (time + energy: a better point may be slower),
+// step 1b runs for time and time + energy only, and no step is asked below
+// RobotProblem::objective_floor().
 // The control flow above is search/reduction_phases.h: named phases and one transition
 // function; reduce_objective runs each phase's solve, passing the elastic solver its limits
 // (iteration cap, the time limit's deadline) as an ElasticRequest.
@@ -98,8 +104,9 @@ std::string to_string(SolveKind kind);
 // One elastic-mode solve (possibly several Ipopt solves inside), as the solve log shows it.
 struct SolveRecord {
   SolveKind kind = SolveKind::kFeasibility;
-  double bound = 0.0;  // s: the fixed T_f (feasibility phases) or the upper bound on T_f
+  double bound = 0.0;  // the fixed T_f [s] (feasibility phases), or J's bound or fixed value
   double T_f = 0.0;    // s: at the solve's end
+  double value = 0.0;  // J at the solve's end (SI; T_f for objective time)
   MpccStatus status = MpccStatus::kFailed;
   NlpOutcome outcome = NlpOutcome::kFailed;  // of its last NLP solve
   int ipopt_status = 0;                       // ... Ipopt's, for messages
@@ -114,12 +121,13 @@ struct SolveRecord {
 
 // The solve log of `disco solve` (and of every start under `disco search
 // --verbose`): a header, then one line per elastic-mode solve, numbered from 1:
-// phase ("coarse " before it in a coarse stage), T_f bound and reached, how it ended in
+// phase ("coarse " before it in a coarse stage), T_f bound and reached (for another
+// objective: J's bound, J and T_f), how it ended in
 // words (solve_outcome_words), certificate, Ipopt solves, iterations and seconds, and "*"
 // for a new best (for a real failure, Ipopt's status in parentheses). The loop's last line, stop_line() (search/reduction_phases.h),
 // says why it stopped.
-std::string solve_log_header();
-std::string solve_log_line(int number, const SolveRecord& r);
+std::string solve_log_header(ObjectiveKind kind = ObjectiveKind::kTime);
+std::string solve_log_line(int number, const SolveRecord& r, ObjectiveKind kind = ObjectiveKind::kTime);
 // "solved", "not tight", "infeasible", "cap reached" (its iteration cap), "time limit",
 // "invalid number" (an evaluation gave NaN or Inf), "max_iter" (Ipopt's own), or "failed".
 std::string solve_outcome_words(MpccStatus status, NlpOutcome outcome);
@@ -133,8 +141,8 @@ struct ReductionResult {
   std::string feasibility_detail;           // the last feasibility solve's own status; when
                                             // kFailed with Ipopt's, "failed (Ipopt: NAME)"
   Vector last_attempt;  // when none is found: the point the last feasibility solve ended at
-  double T_best = 0.0;       // s
-  MpccResult best;           // the certified solve that gave T_best
+  double best_value = 0.0;   // J of best (SI: T_f in s for objective time)
+  MpccResult best;           // the certified solve that gave best_value
   Stationarity stationarity = Stationarity::kFeasible;  // of best
   std::vector<SolveRecord> solves;
   int nlp_solves = 0, iterations = 0;
@@ -142,13 +150,13 @@ struct ReductionResult {
   double time_to_first_feasible = -1.0;  // s, -1 if none
   double time_to_best = -1.0;
   // Every new best, in order: the time since the start of the run (the clock of
-  // time_to_best) and its T_f. The first is the feasible point; the last is T_best.
+  // time_to_best) and its J. The first is the feasible point; the last is best_value.
   struct Improvement {
     double seconds = 0.0;
-    double T_f = 0.0;
+    double value = 0.0;
   };
   std::vector<Improvement> history;
-  double incumbent = kInf;  // s: the scene's incumbent when the loop ended (+inf: none)
+  double incumbent = kInf;  // J: the scene's incumbent when the loop ended (+inf: none)
 };
 
 // The first feasibility horizon (step 1) for `problem`, in seconds.
@@ -167,7 +175,7 @@ struct Perturbation {
 // horizon must not exceed the feasible point's.
 using PerturbFunction = std::function<Perturbation(const Vector& feasible)>;
 
-// The best certified T_f (s) that other starts of a search found for the scene so far, +inf
+// The best certified J (T_f in s for objective time) that other starts of a search found for the scene so far, +inf
 // if none: the shared incumbent (search/reduction_phases.h). Called between solves only.
 using IncumbentFunction = std::function<double()>;
 

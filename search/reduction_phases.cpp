@@ -14,11 +14,12 @@ constexpr int kFeasibilityAttempts = 3;
 constexpr double kMaxRate = 0.5;
 
 // The loop after it ends: a last minimisation if the best came from fixed steps not
-// minimised since, else done.
+// minimised since (or, with minimize_last, from any phase not minimised since), else done.
 ReductionState finish(ReductionState s, const PhaseOutcome& o, StopReason why) {
   s.stop = why;
   const bool fixed = s.phase == Phase::kFixedStep || s.phase == Phase::kProbe;
-  s.phase = fixed && !s.minimized && !o.out_of_time ? Phase::kFinalMinimize : Phase::kDone;
+  s.phase = (fixed || o.minimize_last) && !s.minimized && !o.out_of_time ? Phase::kFinalMinimize
+                                                                          : Phase::kDone;
   return s;
 }
 
@@ -43,7 +44,7 @@ ReductionState admit(ReductionState s, const PhaseOutcome& o, const ReductionSet
   while (s.rate >= cfg.min_rate && step_bound(s, reference) < o.smallest) s.rate *= cfg.shrink;
   if (s.rate < cfg.min_rate) {
     // Aiming below the incumbent, no rate is left: it cannot get below it. Dominated.
-    if (reference < o.T_best) return dominated(s);
+    if (reference < o.best_value) return dominated(s);
     return finish(s, o, StopReason::kMinRate);
   }
   return s;
@@ -62,7 +63,7 @@ bool is_step(Phase phase) {
 }  // namespace
 
 double step_reference(const PhaseOutcome& o, const ReductionSettings& cfg) {
-  return cfg.jump_to_incumbent ? std::min(o.T_best, o.incumbent) : o.T_best;
+  return cfg.jump_to_incumbent ? std::min(o.best_value, o.incumbent) : o.best_value;
 }
 
 SolveKind solve_kind(Phase phase) {
@@ -85,6 +86,8 @@ std::string stop_line(StopReason reason, const ReductionSettings& cfg) {
     case StopReason::kNoFeasiblePoint:
       return fmt::format("stopped: no feasible point after {} feasibility attempts (each at twice "
                          "the horizon of the last)", kFeasibilityAttempts);
+    case StopReason::kNoFeasiblePointAtHorizon:
+      return "stopped: no feasible point at the scene's fixed horizon (objective.horizon)";
     case StopReason::kOutOfTime: return "stopped: time limit reached";
     case StopReason::kInterrupted: return "stopped: interrupted (SIGINT or SIGTERM)";
     case StopReason::kMaxSolves:
@@ -115,7 +118,7 @@ ReductionState next_phase(const ReductionState& state, const PhaseOutcome& o,
   if (is_step(state.phase)) {
     // Dominated: after dominated_after steps in a row, its best is still above what another
     // start found. It cannot win the scene within that effort: stop (no final minimisation).
-    s.above_incumbent = o.T_best > o.incumbent ? s.above_incumbent + 1 : 0;
+    s.above_incumbent = o.best_value > o.incumbent ? s.above_incumbent + 1 : 0;
     if (cfg.dominated_after > 0 && s.above_incumbent >= cfg.dominated_after) return dominated(s);
   }
   switch (state.phase) {
@@ -125,9 +128,11 @@ ReductionState next_phase(const ReductionState& state, const PhaseOutcome& o,
         if (o.perturb && !o.out_of_time) return with_phase(s, Phase::kPerturbed);
         return admit(with_phase(s, Phase::kMinimizingStep), o, cfg);
       }
-      if (s.attempt < kFeasibilityAttempts && !o.out_of_time)
+      if (s.attempt < (o.horizon_fixed ? 1 : kFeasibilityAttempts) && !o.out_of_time)
         return with_phase(s, Phase::kFeasibility);
-      s.stop = o.out_of_time ? StopReason::kOutOfTime : StopReason::kNoFeasiblePoint;
+      s.stop = o.out_of_time     ? StopReason::kOutOfTime
+               : o.horizon_fixed ? StopReason::kNoFeasiblePointAtHorizon
+                                 : StopReason::kNoFeasiblePoint;
       return with_phase(s, Phase::kDone);
     case Phase::kPerturbed: return admit(with_phase(s, Phase::kMinimizingStep), o, cfg);
     case Phase::kMinimizingStep:

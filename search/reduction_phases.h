@@ -12,7 +12,8 @@
 //   kProbe --new best--> kFixedStep;  --no new best--> kDone
 //   any step, before it runs: past the time limit -> kDone; max_solves steps made, or no rate
 //   >= min_rate keeps the bound above the smallest horizon -> kFinalMinimize (fixed steps
-//   that have not been minimised since their last new best) or kDone; the start's best above
+//   that have not been minimised since their last new best; any phase with minimize_last)
+//   or kDone; the start's best above
 //   the scene's incumbent for reduction.dominated_after steps in a row, or no rate >=
 //   min_rate left for a step aimed below the incumbent -> kDone (dominated).
 //
@@ -21,6 +22,9 @@
 // reduction.jump_to_incumbent a step asks for (1 - r) min(T_best, incumbent): a start whose
 // best is above the incumbent aims straight below it. With an infinite incumbent every rule
 // here is the one without it, step for step.
+//
+// With another objective than time (core/model/objective.h) read J for T_f in every step,
+// bound and best; a scene that fixes T_f (energy) has one feasibility attempt.
 #pragma once
 
 #include <string>
@@ -47,6 +51,7 @@ SolveKind solve_kind(Phase phase);  // what the phase's solve is, for the solve 
 enum class StopReason {
   kNone,             // still running
   kNoFeasiblePoint,  // every feasibility attempt failed
+  kNoFeasiblePointAtHorizon,  // the one feasibility attempt at the scene's fixed T_f failed
   kOutOfTime,        // the time limit passed
   kInterrupted,      // an interrupt (core/util/interrupt.h); set by reduce_objective
   kMaxSolves,        // reduction.max_solves steps made
@@ -77,11 +82,16 @@ struct PhaseOutcome {
   bool improved = false;      // it gave a new best
   bool failed = false;        // MpccStatus::kFailed
   bool inside_bound = false;  // its T_f lies strictly inside its bound (a minimising step's)
-  double T_best = 0.0;        // s, the best after the phase
-  double smallest = 0.0;      // s, no step is asked below this (lower bound, model minimum)
+  double best_value = 0.0;    // J (s for time), the best after the phase
+  double smallest = 0.0;      // J, no step is asked below this (RobotProblem::objective_floor)
   bool perturb = false;       // step 1b is asked for
   bool out_of_time = false;   // the time limit has passed
-  double incumbent = kInf;    // s, the scene's best from other starts (+inf: none known)
+  double incumbent = kInf;    // J, the scene's best from other starts (+inf: none known)
+  bool horizon_fixed = false; // the scene fixes T_f (objective energy): one feasibility attempt
+  // The loop ends with a minimisation of J from the best point unless one converged since its
+  // last new best, whatever the last phase (objectives other than time: a feasible point at a
+  // fixed T_f can lie within a step's rate of the optimum, where every step fails).
+  bool minimize_last = false;
 };
 
 ReductionState begin_reduction(const ReductionSettings& settings);

@@ -62,8 +62,8 @@ StartOutcome run_task(const Context& c, const Task& t, json* solution, const Inc
   SolveCallback on_solve;
   if (verbose || link.found) {
     on_solve = [&, count = 0](const SolveRecord& r) mutable {
-      if (verbose) spdlog::debug("  {} start {}: {}", scene.name, t.start, solve_log_line(++count, r));
-      if (link.found && r.improved) link.found(r.T_f);
+      if (verbose) spdlog::debug("  {} start {}: {}", scene.name, t.start, solve_log_line(++count, r, scene.objective.kind));
+      if (link.found && r.improved) link.found(r.value);
     };
   }
   StartOutcome o = run_start(scene, c.settings, spec, t.budget, t.source, solution, on_solve,
@@ -88,7 +88,7 @@ void worker_loop(const Context& c, Transport& transport) {
     const json j = json::parse(m.body);
     const auto scene = j.at("scene").get<std::size_t>();
     double& x = incumbent.at(scene);
-    x = std::min(x, j.at("T_f").get<double>());
+    x = std::min(x, j.at("value").get<double>());
     spdlog::debug("rank {}: incumbent of {} now {:.6f} (from rank 0)", c.rank,
                   c.plan.scenes.at(scene).scene.name, x);
   };
@@ -107,9 +107,9 @@ void worker_loop(const Context& c, Transport& transport) {
         while (const auto m = transport.poll()) take(*m);
         return incumbent[task.scene];
       };
-      link.found = [&](double T_f) {
+      link.found = [&](double value) {
         transport.send(0, MessageKind::kProgress,
-                       json{{"scene", task.scene}, {"start", task.start}, {"T_f", T_f}}.dump());
+                       json{{"scene", task.scene}, {"start", task.start}, {"value", value}}.dump());
       };
     }
     json solution;

@@ -80,6 +80,7 @@ json StartOutcome::to_json() const {
           {"stopped", stopped},
           {"budget", {{"seconds", budget}, {"set_by", to_string(budget_source)}}},
           {"T_f", number_or_null(T_f)},
+          {"value", number_or_null(value)},
           {"certificate",
            {{"max_violation", number_or_null(max_violation)},
             {"max_complementarity", number_or_null(max_complementarity)}}},
@@ -112,6 +113,7 @@ StartOutcome StartOutcome::from_json(const json& j) {
     o.budget_source = budget_source_from_string(j["budget"].at("set_by").get<std::string>());
   }
   o.T_f = number_or_nan(j.at("T_f"));
+  o.value = j.contains("value") ? number_or_nan(j["value"]) : o.T_f;  // older files: time only
   o.max_violation = number_or_nan(j.at("certificate").at("max_violation"));
   o.max_complementarity = number_or_nan(j.at("certificate").at("max_complementarity"));
   o.nlp_solves = j.value("nlp_solves", 0);
@@ -154,10 +156,11 @@ StartOutcome run_start(const Scene& scene, const Settings& settings, const Start
     out.iterations = r.iterations;
     out.time_to_first_feasible = r.time_to_first_feasible;
     out.time_to_best = r.time_to_best;
-    for (const auto& i : r.history) out.history.push_back({i.seconds, i.T_f});
+    for (const auto& i : r.history) out.history.push_back({i.seconds, i.value});
     if (std::isfinite(r.incumbent)) out.incumbent = r.incumbent;
     if (r.found) {
-      out.T_f = r.T_best;
+      out.value = r.best_value;
+      out.T_f = run.problem->horizon(run.z);
       out.best_class = homotopy_class(scene, paths_of(*run.problem, run.z)).to_json(scene);
     } else {
       out.detail = r.feasibility_detail;

@@ -59,6 +59,9 @@ struct StartOutcome {
   double budget = 0.0;  // s: the time budget the start had (0: none)
   BudgetSource budget_source = BudgetSource::kNone;
   double T_f = std::numeric_limits<double>::quiet_NaN();  // s, NaN if none
+  // The objective J of the best point (core/model/objective.h; = T_f for objective time):
+  // what starts and scenes are compared by. NaN if none.
+  double value = std::numeric_limits<double>::quiet_NaN();
   double max_violation = std::numeric_limits<double>::quiet_NaN();
   double max_complementarity = std::numeric_limits<double>::quiet_NaN();
   int nlp_solves = 0, iterations = 0;
@@ -70,15 +73,15 @@ struct StartOutcome {
   // The homotopy class (search/homotopy.h, HomotopyClass::to_json) of the initial guess's
   // paths ("guess_class") and of the best point ("class"; null without one).
   nlohmann::json guess_class, best_class;
-  // Every new best of the start: [seconds within the start, T_f] (ReductionResult::history).
+  // Every new best of the start: [seconds within the start, J] (ReductionResult::history).
   std::vector<std::array<double, 2>> history;
-  // s: the scene's shared incumbent when the start ended (NaN: none; search/reduction_phases.h)
+  // J: the scene's shared incumbent when the start ended (NaN: none; search/reduction_phases.h)
   double incumbent = std::numeric_limits<double>::quiet_NaN();
   int rank = 0;
   double finished_s = -1.0;  // search time when rank 0 recorded it (set by the coordinator)
   bool solved() const { return status == StartStatus::kSolved; }
   // A certified point exists (solved, or cut short after finding one).
-  bool certified() const { return std::isfinite(T_f); }
+  bool certified() const { return std::isfinite(value); }
   // Cut short (time limit or interrupt): the start did not run to its end.
   bool cut_short() const {
     return status == StartStatus::kTimeLimit || status == StartStatus::kInterrupted;

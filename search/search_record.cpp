@@ -1,5 +1,7 @@
 #include "search/search_record.h"
 
+#include "core/model/objective.h"
+
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
@@ -87,7 +89,7 @@ bool SearchRecord::update(int s, const StartOutcome& o, double now, double scene
     if (!is_final(x, plan_.scenes[s])) ++b.cut_short;
     if (!x.certified()) continue;
     ++b.solved;
-    if (least == nullptr || x.T_f < least->T_f) least = &x;  // ties: the lower start (map order)
+    if (least == nullptr || x.value < least->value) least = &x;  // ties: the lower start (map order)
   }
   // Scene times count from the hand-out of the scene's first start, to the
   // moment a rank found the point: the start was handed out o.seconds ago
@@ -104,7 +106,7 @@ bool SearchRecord::update(int s, const StartOutcome& o, double now, double scene
                  "best/{}.json still holds start {}'s earlier point", o.scene, o.start,
                  least->start, o.scene, o.start);
   b.start = least->start;
-  b.T_f = least->T_f;
+  b.value = least->value;
   b.outcome = *least;
   if (least->start != o.start || !o.certified()) return false;
   b.best_s = std::max(0.0, handed + std::max(0.0, o.time_to_best));
@@ -177,16 +179,17 @@ void SearchRecord::recover_lines(const std::string& path, std::uint64_t seed,
       }
     }
     const Best& b = best_[s];
-    if (b.start >= 0 && !(doc.is_object() && doc.value("T_f", json()) == json(b.T_f) &&
+    if (b.start >= 0 && !(doc.is_object() && doc.value("value", doc.value("T_f", json())) == json(b.value) &&
                           prov.value("start", -1) == b.start))
-      spdlog::warn("resume: {}'s best in {} is start {} (T_f {:.6f}), but {} does not hold it",
-                   plan_.scenes[s].scene.name, path, b.start, b.T_f, file);
+      spdlog::warn("resume: {}'s best in {} is start {} ({} {:.6f}), but {} does not hold it",
+                   plan_.scenes[s].scene.name, path, b.start,
+                   to_string(plan_.scenes[s].scene.objective.kind), b.value, file);
   }
 }
 
-std::optional<double> SearchRecord::best_T_f(int s) const {
+std::optional<double> SearchRecord::best_value(int s) const {
   if (best_[s].start < 0) return std::nullopt;
-  return best_[s].T_f;
+  return best_[s].value;
 }
 
 bool SearchRecord::all_solved() const {
@@ -197,7 +200,7 @@ std::string SearchRecord::best_summary(int s) const {
   auto one = [&](std::size_t k) {
     const Best& b = best_[k];
     return plan_.scenes[k].scene.name + " " +
-           (b.start >= 0 ? fmt::format("{:.6f}", b.T_f) : std::string("-"));
+           (b.start >= 0 ? fmt::format("{:.6f}", b.value) : std::string("-"));
   };
   if (best_.size() > 4) {
     if (s >= 0) return one(static_cast<std::size_t>(s));
@@ -228,14 +231,18 @@ void SearchRecord::write_best(const TaskQueue& queue, double now, bool interrupt
     const auto lb = scene_lower_bound(scene), ref = scene_reference_time(scene);
     j["lower_bound"] = lb && std::isfinite(*lb) ? json(*lb) : json(nullptr);
     j["reference_time"] = ref ? json(*ref) : json(nullptr);
+    j["objective"] = to_string(scene.objective.kind);
+    j["objective_unit"] = objective_unit(scene.objective.kind);
     if (b.start >= 0) {
-      j["T_f"] = b.T_f;
+      j["value"] = b.value;
+      j["T_f"] = b.outcome.T_f;
       j["start"] = b.start;
       j["description"] = b.outcome.description;
       j["certificate"] = {{"max_violation", b.outcome.max_violation},
                           {"max_complementarity", b.outcome.max_complementarity}};
       j["solution"] = "best/" + scene.name + ".json";
     } else {
+      j["value"] = nullptr;
       j["T_f"] = nullptr;
     }
     scenes[scene.name] = j;

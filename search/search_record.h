@@ -74,7 +74,7 @@ class SearchRecord {
   int cut_short() const { return cut_short_; }    // this run's outcomes that are not final
   int interrupted() const { return interrupted_; }  // of those, cut by an interrupt
   bool all_solved() const;  // every scene has a certified best
-  std::optional<double> best_T_f(int s) const;  // scene s's best certified T_f, if any
+  std::optional<double> best_value(int s) const;  // scene s's best certified J, if any
 
   // "scene T_f" for every scene with at most four, else for scene s (or, with s < 0, how
   // many scenes are solved): the progress lines' best.
@@ -83,7 +83,7 @@ class SearchRecord {
  private:
   struct Best {
     int start = -1;
-    double T_f = 0.0;
+    double value = 0.0;  // J (T_f for objective time)
     StartOutcome outcome;
     int run = 0, solved = 0;  // starts with an outcome; with a certified point
     int cut_short = 0;        // of those, cut short (not final: --resume runs them again)

@@ -103,7 +103,7 @@ SceneSolve solve_scene(const Scene& scene, const Settings& settings, const Start
     coarse = reduce(problem, solver, start, schedule, on_coarse, {});
     if (coarse->found)
       fine = with_guess(start, {resample(paths_of(problem, coarse->best.z), scene.steps),
-                                coarse->T_best, fmt::format("coarse N_t = {}", n)});
+                                problem.horizon(coarse->best.z), fmt::format("coarse N_t = {}", n)});
     if (schedule.time_limit > 0)  // the fine stage has what is left (at once past its end)
       schedule.time_limit = std::max(1e-3, schedule.time_limit - coarse->seconds);
   }

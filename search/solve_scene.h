@@ -22,7 +22,8 @@ struct SceneSolve {
   SolutionInfo info;  // status, certificate of the best point, timing
   Vector z;           // best point (model units), empty if none
   bool solved() const { return result.found; }
-  double T_f() const { return result.T_best; }
+  double value() const { return result.best_value; }  // J of the best point (SI)
+  double T_f() const { return problem->horizon(z); }   // s, of the best point (solved only)
 };
 
 // The steps of a coarse-to-fine start's coarse stage (feasibility.coarse_fraction):

@@ -126,7 +126,7 @@ json outcome_message(const SearchPlan& plan, const Task& task, double T_f) {
     o.detail = "internal check failed at somewhere.cpp:1: false (a made-up bug)";
   } else {
     o.status = StartStatus::kSolved;
-    o.T_f = T_f;
+    o.T_f = o.value = T_f;
     o.max_violation = o.max_complementarity = 1e-9;
   }
   return {{"outcome", o.to_json()}, {"solution", {{"T_f", T_f}}}};
@@ -269,12 +269,12 @@ TEST(CoordinatorIncumbent, ABetterBestGoesToTheWorkersRunningItsSceneOnce) {
   for (const auto& m : out) {
     to.push_back(m.to);
     EXPECT_EQ(m.kind, MessageKind::kIncumbent);
-    EXPECT_EQ(json::parse(m.body), (json{{"scene", s}, {"T_f", 3.0}}));
+    EXPECT_EQ(json::parse(m.body), (json{{"scene", s}, {"value", 3.0}}));
   }
   std::sort(to.begin(), to.end());
   EXPECT_EQ(to, (std::vector<int>{1, 2}));
   EXPECT_TRUE(c.take_outbox().empty()) << "each improvement is sent once";
-  c.on_progress(json{{"scene", s}, {"start", t1.start}, {"T_f", 4.0}}.dump());  // not better
+  c.on_progress(json{{"scene", s}, {"start", t1.start}, {"value", 4.0}}.dump());  // not better
   EXPECT_EQ(c.incumbent(s), 3.0);
   EXPECT_TRUE(c.take_outbox().empty());
 

@@ -68,13 +68,13 @@ class SimTransport : public Transport {
         // The start's best: 5-15 s, reported half-way 1 % higher, then final.
         const double T_f = 5.0 + 10.0 * unit(t.start, t.scene + 17);
         push(now_ + 0.5 * d, to, MessageKind::kProgress,
-             json{{"scene", t.scene}, {"start", t.start}, {"T_f", 1.01 * T_f}}.dump());
+             json{{"scene", t.scene}, {"start", t.start}, {"value", 1.01 * T_f}}.dump());
         StartOutcome o;
         o.scene = plan_.scenes[t.scene].scene.name;
         o.start = t.start;
         o.seed = 1;
         o.status = StartStatus::kSolved;
-        o.T_f = T_f;
+        o.T_f = o.value = T_f;
         o.max_violation = o.max_complementarity = 1e-9;
         o.seconds = d;
         o.rank = to;
@@ -86,9 +86,9 @@ class SimTransport : public Transport {
         ++incumbent_messages_;
         ASSERT_TRUE(running_[to]) << "an incumbent for worker " << to << ", which runs nothing";
         EXPECT_EQ(j["scene"].get<int>(), running_[to]->scene);
-        EXPECT_EQ(j["T_f"].get<double>(), reported_.at(j["scene"].get<int>()))
+        EXPECT_EQ(j["value"].get<double>(), reported_.at(j["scene"].get<int>()))
             << "the best reported so far";
-        if (j["T_f"].get<double>() < 1.01 * 5.0 + 1e-9) ++told_best_;
+        if (j["value"].get<double>() < 1.01 * 5.0 + 1e-9) ++told_best_;
         break;
       }
       case MessageKind::kStop:
@@ -111,7 +111,7 @@ class SimTransport : public Transport {
       const int s = e.kind == MessageKind::kProgress
                         ? j["scene"].get<int>()
                         : scene_index(j["outcome"]["scene"].get<std::string>());
-      const double T_f = e.kind == MessageKind::kProgress ? j["T_f"].get<double>()
+      const double T_f = e.kind == MessageKind::kProgress ? j["value"].get<double>()
                                                           : j["outcome"]["T_f"].get<double>();
       if (!reported_.count(s) || T_f < reported_[s]) reported_[s] = T_f;
     }

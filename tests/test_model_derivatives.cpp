@@ -27,6 +27,7 @@
 #include "core/elastic/elastic_nlp.h"
 #include "core/ipopt/ipopt_solver.h"
 #include "core/model/gap.h"
+#include "core/model/objective.h"
 #include "core/model/obstacles.h"
 #include "core/model/robot_problem.h"
 #include "core/nlp/derivative_checker.h"
@@ -398,6 +399,38 @@ TEST(ModelFullDerivatives, FullModelAndAdaptiveWindows) {
       EXPECT_TRUE(partial) << "no window starts late: the check would not cover window edges";
     }
     check_all_points(rp, 6161);
+  }
+}
+
+// The objectives other than time (core/model/objective.h): sum h |F|^2 in the objective and in
+// the row that bounds it, on every small scene (one-axis forces, objects without force,
+// obstacles) with the whole model. The row must carry exactly the objective: at a point the
+// row's value is the objective's, in model units.
+TEST(ModelObjectiveDerivatives, EnergyAndTimePlusEnergy) {
+  unsigned seed = 9100;
+  for (const ObjectiveKind kind : {ObjectiveKind::kEnergy, ObjectiveKind::kTimeEnergy}) {
+    for (auto [name, scene] : small_scenes()) {
+      SCOPED_TRACE(to_string(kind) + ", scene " + name);
+      scene.objective.kind = kind;
+      scene.objective.horizon = kind == ObjectiveKind::kEnergy ? 2.0 : 0.0;
+      scene.objective.energy_weight = kind == ObjectiveKind::kTimeEnergy ? 0.3 : 0.0;
+      const RobotProblem rp(scene, ModelOptions{false, kInf});
+      const PolynomialProgram& P = rp.program();
+      Scene timed = scene;
+      timed.objective = Objective{};
+      ASSERT_EQ(P.num_constraints(),
+                RobotProblem(timed, ModelOptions{false, kInf}).program().num_constraints() + 1)
+          << "one row bounds J";
+      const Vector z = random_point(rp, seed);
+      check_all_points(rp, seed);
+      seed += 31;
+      // The row of J is the last; its value is the objective (model units).
+      double f = 0.0;
+      ASSERT_TRUE(P.objective(z, f));
+      Vector c(P.num_constraints());
+      ASSERT_TRUE(P.constraints(z, c));
+      EXPECT_NEAR(c[P.num_constraints() - 1], f, 1e-12 * std::max(1.0, std::abs(f)));
+    }
   }
 }
 

@@ -63,7 +63,7 @@ TEST(ObjectiveReduction, PerturbedFeasibleStartReachesACertifiedSolution) {
   for (const SolveRecord& r : result.solves)
     std::printf("  %-22s bound %.4f T_f %.4f %s%s\n", to_string(r.kind).c_str(), r.bound, r.T_f,
                 to_string(r.status).c_str(), r.improved ? " *" : "");
-  std::printf("T_best %.4f s, %zu solves, %d Ipopt iterations, %.2f s\n", result.T_best,
+  std::printf("T_best %.4f s, %zu solves, %d Ipopt iterations, %.2f s\n", result.best_value,
               result.solves.size(), result.iterations, result.seconds);
   ASSERT_TRUE(result.found) << to_string(result.status) << " " << result.feasibility_detail;
   EXPECT_EQ(result.status, MpccStatus::kSolved);
@@ -80,7 +80,7 @@ TEST(ObjectiveReduction, PerturbedFeasibleStartReachesACertifiedSolution) {
   EXPECT_NEAR(result.solves[k].bound, start.T_scale * feasible.T_f, 1e-9 * feasible.T_f);
   EXPECT_EQ(phases.size(), result.solves.size());
   // Never worse than the feasible point it started from.
-  EXPECT_LE(result.T_best, feasible.T_f);
+  EXPECT_LE(result.best_value, feasible.T_f);
 }
 
 TEST(ObjectiveReduction, AnUncertifiedPerturbationLeavesTheReductionAsWithout) {
@@ -112,8 +112,8 @@ TEST(ObjectiveReduction, AnUncertifiedPerturbationLeavesTheReductionAsWithout) {
   EXPECT_FALSE(extra.improved);
   EXPECT_EQ(extra.bound, impossible);
   // Everything else as without the perturbation, bit for bit.
-  EXPECT_TRUE(same_bits(perturbed.T_best, plain.T_best))
-      << perturbed.T_best << " vs " << plain.T_best;
+  EXPECT_TRUE(same_bits(perturbed.best_value, plain.best_value))
+      << perturbed.best_value << " vs " << plain.best_value;
   for (size_t k = 0; k < plain.solves.size(); ++k) {
     const SolveRecord& a = plain.solves[k];
     const SolveRecord& b = perturbed.solves[k == 0 ? 0 : k + 1];
@@ -178,8 +178,8 @@ TEST(ObjectiveReduction, NoStepIsAskedBelowTheLowerBound) {
   const ReductionResult result = reduce_plainly(problem, 0.45);
   print(result);
   ASSERT_TRUE(result.found);
-  EXPECT_GE(result.T_best, lower_bound);
-  EXPECT_LE(result.T_best, lower_bound * (1 + 1e-2));
+  EXPECT_GE(result.best_value, lower_bound);
+  EXPECT_LE(result.best_value, lower_bound * (1 + 1e-2));
   for (const SolveRecord& r : result.solves) EXPECT_GE(r.bound, lower_bound) << to_string(r.kind);
 }
 
@@ -200,7 +200,7 @@ TEST(ObjectiveReduction, NoStepIsAskedBelowTheSmallestHorizon) {
   ASSERT_TRUE(result.found);
   for (const SolveRecord& r : result.solves) EXPECT_GE(r.bound, smallest) << to_string(r.kind);
   // Within Ipopt's absolute tolerance (1e-9 in model units) of its bound.
-  EXPECT_NEAR(result.T_best, smallest, 1e-9 * problem.units().time);
+  EXPECT_NEAR(result.best_value, smallest, 1e-9 * problem.units().time);
   // Certified on the model as it is left (the horizon freed), as solve_scene certifies it.
   EXPECT_TRUE(certify(problem.program(), result.best.z).within(1e-6, 1e-6));
 }
@@ -391,7 +391,7 @@ TEST(ObjectiveReduction, TheBranchMinimizerDescendsAndReachesTheOneRobotOptimum)
         }
       }
     }
-    EXPECT_LE(result.T_best, best_fixed) << name;
+    EXPECT_LE(result.best_value, best_fixed) << name;
     // A best from a branch descent is B-stationary only when no flip was left.
     const SolveRecord& b = best_solve(result);
     if (b.kind == SolveKind::kBranch && result.stationarity == Stationarity::kB) {
@@ -406,8 +406,8 @@ TEST(ObjectiveReduction, TheBranchMinimizerDescendsAndReachesTheOneRobotOptimum)
     }
     if (std::string(name) == "one_robot_axis") {
       const double lb = problem.lower_bound().value();
-      EXPECT_GE(result.T_best, lb * (1 - 1e-9));
-      EXPECT_LE(result.T_best, lb * (1 + 1e-3));
+      EXPECT_GE(result.best_value, lb * (1 - 1e-9));
+      EXPECT_LE(result.best_value, lb * (1 + 1e-3));
     } else {
       EXPECT_TRUE(branch) << name << ": no branch descent";
     }
@@ -427,8 +427,8 @@ TEST(ObjectiveReduction, TheRelaxedFormulationReachesTheOneRobotOptimum) {
     ASSERT_NO_FATAL_FAILURE(expect_certified_best(result, name));
     if (std::string(name) == "one_robot_axis") {
       const double lb = problem.lower_bound().value();
-      EXPECT_GE(result.T_best, lb * (1 - 1e-9));
-      EXPECT_LE(result.T_best, lb * (1 + 1e-3));
+      EXPECT_GE(result.best_value, lb * (1 - 1e-9));
+      EXPECT_LE(result.best_value, lb * (1 + 1e-3));
     }
   }
 }
@@ -470,7 +470,7 @@ TEST(ObjectiveReductionIncumbent, AnIncumbentAboveEveryPointChangesNothing) {
   ASSERT_TRUE(a.found);
   EXPECT_EQ(a.iterations, b.iterations);
   EXPECT_EQ(a.solves.size(), b.solves.size());
-  EXPECT_TRUE(same_bits(a.T_best, b.T_best)) << a.T_best << " vs " << b.T_best;
+  EXPECT_TRUE(same_bits(a.best_value, b.best_value)) << a.best_value << " vs " << b.best_value;
   EXPECT_EQ(a.stop, b.stop);
   EXPECT_EQ(b.incumbent, 1e9);
 }
@@ -494,7 +494,7 @@ TEST(ObjectiveReductionIncumbent, AStartThatStaysAboveTheIncumbentStopsDominated
   ASSERT_GT(a.solves.size(), 3u) << "alone, the start takes more steps";
   for (std::size_t k = 0; k < b.solves.size(); ++k)
     EXPECT_TRUE(same_bits(a.solves[k].T_f, b.solves[k].T_f)) << "solve " << k;
-  EXPECT_GT(b.T_best, unreachable);
+  EXPECT_GT(b.best_value, unreachable);
   EXPECT_NE(stop_line(b.stop, d.schedule).find("dominated"), std::string::npos);
   // As a start of the search: status dominated, its certified best and the incumbent recorded.
   Settings settings = d.settings;
@@ -526,7 +526,7 @@ TEST(ObjectiveReductionIncumbent, WithJumpsTheFirstStepAimsBelowTheIncumbent) {
   ASSERT_GT(r.solves[0].T_f, incumbent);
   EXPECT_DOUBLE_EQ(r.solves[1].bound, (1.0 - d.schedule.rate) * incumbent);
   // It either got below the incumbent or stopped as dominated.
-  EXPECT_TRUE(r.T_best < incumbent || r.stop == StopReason::kDominated) << r.T_best;
+  EXPECT_TRUE(r.best_value < incumbent || r.stop == StopReason::kDominated) << r.best_value;
 }
 
 TEST(ObjectiveReduction, AnUnknownMinimizerIsAnErrorNamingTheKey) {

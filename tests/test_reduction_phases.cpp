@@ -23,7 +23,7 @@ ReductionState in(Phase phase, double rate = 0.05) {
 // A phase's outcome at T_best = 10 s, with no step bound below 1 s.
 PhaseOutcome outcome() {
   PhaseOutcome o;
-  o.T_best = 10.0;
+  o.best_value = 10.0;
   o.smallest = 1.0;
   return o;
 }
@@ -75,6 +75,34 @@ TEST(ReductionPhases, TheFeasibilityPhaseTriesThreeHorizons) {
   EXPECT_EQ(s.phase, Phase::kDone);
   EXPECT_EQ(s.attempt, 3);
   EXPECT_EQ(s.stop, StopReason::kNoFeasiblePoint);
+}
+
+// Objective energy: T_f is the scene's, so there is no other horizon to try.
+TEST(ReductionPhases, AFixedHorizonGivesOneFeasibilityAttempt) {
+  PhaseOutcome o = failed();
+  o.horizon_fixed = true;
+  const ReductionState s = next_phase(begin_reduction(schedule()), o, schedule());
+  EXPECT_EQ(s.phase, Phase::kDone);
+  EXPECT_EQ(s.attempt, 1);
+  EXPECT_EQ(s.stop, StopReason::kNoFeasiblePointAtHorizon);
+  EXPECT_EQ(stop_line(s.stop, schedule()),
+            "stopped: no feasible point at the scene's fixed horizon (objective.horizon)");
+}
+
+// Objectives other than time: minimising steps that all fail (the feasible point was within a
+// step's rate of the optimum) still end with a minimisation of J; one that converged inside
+// its bound needs none.
+TEST(ReductionPhases, MinimizeLastEndsAnyLoopWithAMinimisation) {
+  PhaseOutcome o = no_gain();
+  o.minimize_last = true;
+  const ReductionState s = next_phase(in(Phase::kMinimizingStep, 0.015), o, schedule());
+  EXPECT_EQ(s.phase, Phase::kFinalMinimize);
+  EXPECT_EQ(s.stop, StopReason::kMinRate);
+  ReductionState minimized = in(Phase::kMinimizingStep, 0.015);
+  minimized.minimized = true;
+  EXPECT_EQ(next_phase(minimized, o, schedule()).phase, Phase::kDone);
+  o.out_of_time = true;
+  EXPECT_EQ(next_phase(in(Phase::kMinimizingStep, 0.015), o, schedule()).phase, Phase::kDone);
 }
 
 TEST(ReductionPhases, NoFurtherFeasibilityAttemptPastTheTimeLimit) {
@@ -248,7 +276,7 @@ TEST(ReductionPhases, TheRateShrinksUntilTheBoundClearsTheSmallestHorizon) {
   const ReductionState s = next_phase(in(Phase::kMinimizingStep, 0.05), o, schedule());
   EXPECT_EQ(s.phase, Phase::kMinimizingStep);
   EXPECT_DOUBLE_EQ(s.rate, 0.05);
-  EXPECT_GE(step_bound(s, o.T_best), o.smallest);
+  EXPECT_GE(step_bound(s, o.best_value), o.smallest);
 }
 
 TEST(ReductionPhases, ARateBelowMinRateEndsTheLoop) {
@@ -350,7 +378,7 @@ TEST(ReductionPhasesIncumbent, ABestBelowTheIncumbentResetsTheCount) {
   ReductionState s = in(Phase::kFixedStep);
   s.above_incumbent = 2;
   PhaseOutcome o = under(improved());
-  o.T_best = 7.5;  // below another start's 8: this start leads
+  o.best_value = 7.5;  // below another start's 8: this start leads
   s = next_phase(s, o, sharing());
   EXPECT_EQ(s.above_incumbent, 0);
   EXPECT_EQ(s.phase, Phase::kFixedStep);

@@ -671,12 +671,12 @@ TEST(Start, ReductionFromADetourStartReachesACertifiedSolution) {
   const ReductionResult result = reduce_objective(
       problem, solver, start.schedule,
       [&](double seconds) { return make_guess(problem, start, seconds); });
-  std::printf("T_best %.4f s, %zu solves, %d Ipopt iterations, %.2f s\n", result.T_best,
+  std::printf("T_best %.4f s, %zu solves, %d Ipopt iterations, %.2f s\n", result.best_value,
               result.solves.size(), result.iterations, result.seconds);
   ASSERT_TRUE(result.found) << to_string(result.status) << " " << result.feasibility_detail;
   EXPECT_EQ(result.status, MpccStatus::kSolved);
   EXPECT_TRUE(result.best.certificate.within(1e-6, 1e-6));
-  EXPECT_GT(result.T_best, 0.0);
+  EXPECT_GT(result.best_value, 0.0);
 }
 
 }  // namespace

@@ -200,7 +200,7 @@ TEST(Trajectory, ACoarseToFineStartSolvesFewerStepsFirstAndNeverTakesACoarseBest
   double coarse_seconds = 0.0;
   for (int k = 0; k < coarse; ++k) coarse_seconds += solves[k].seconds;
   EXPECT_GE(run.result.history.front().seconds, coarse_seconds);
-  EXPECT_EQ(run.result.history.back().T_f, run.T_f());
+  EXPECT_EQ(run.result.history.back().value, run.T_f());
 
   // A fraction that leaves no fewer steps: no coarse stage.
   settings.apply_override("feasibility.coarse_fraction=0.99");

@@ -13,6 +13,7 @@
 #include "core/model/kinematics.h"
 #include "core/model/lower_bound.h"
 #include "core/model/nonpenetration.h"
+#include "core/model/objective.h"
 #include "core/model/obstacles.h"
 #include "core/util/check.h"
 #include "core/util/numbers.h"
@@ -36,6 +37,7 @@ RobotProblem::RobotProblem(const Scene& scene, const std::vector<Family>& famili
                            const ModelOptions& options)
     : scene_(scene), units_(choose_units(scene)), families_(families), options_(options) {
   DISCO_CHECK(options.horizon_max > 0, "the largest horizon is positive");
+  if (horizon_is_fixed()) options_.horizon_max = scene.objective.horizon;  // never another T_f
   build();
 }
 
@@ -56,12 +58,15 @@ void RobotProblem::build() {
   if (has(Family::kContactFriction)) add_contact_friction(L, program_);
   if (has(Family::kAvoidance)) add_avoidance(L, program_);
   if (has(Family::kBounds)) add_bounds(L, program_, kHorizonMin, std::max(kHorizonMin, T_max));
-  program_.add(PolynomialProgram::kObjective, 1.0, L.horizon());  // minimize T_f
+  add_objective(L, program_);
+  objective_row_ = scene_.objective.kind == ObjectiveKind::kTime ? -1 : add_objective_row(L, program_);
   program_.finalize();
+  free_objective();
 }
 
 void RobotProblem::set_horizon_max(double max_seconds) {
   DISCO_CHECK(max_seconds > 0, "the largest horizon is positive");
+  if (horizon_is_fixed()) max_seconds = scene_.objective.horizon;
   if (max_seconds == options_.horizon_max) return;
   options_.horizon_max = max_seconds;
   build();
@@ -81,6 +86,49 @@ void RobotProblem::fix_horizon(double seconds) {
 void RobotProblem::limit_horizon(double max_seconds) {
   const double T = std::min(max_seconds, options_.horizon_max) / units_.time;
   program_.set_variable_bounds(layout_->horizon_index(), kHorizonMin, std::max(kHorizonMin, T));
+}
+
+ObjectiveKind RobotProblem::objective_kind() const { return scene_.objective.kind; }
+
+void RobotProblem::bound_objective(double value, bool fixed) {
+  if (objective_row_ < 0) {  // time: the bound is on T_f itself
+    if (fixed)
+      fix_horizon(value);
+    else
+      limit_horizon(value);
+    return;
+  }
+  const double J = value / objective_scale(objective_kind(), units_);
+  program_.set_constraint_bounds(objective_row_, fixed ? J : -kInf, J);
+}
+
+void RobotProblem::free_objective() {
+  if (objective_row_ >= 0) program_.set_constraint_bounds(objective_row_, -kInf, kInf);
+  if (horizon_is_fixed())
+    fix_horizon(scene_.objective.horizon);
+  else
+    limit_horizon(kInf);
+}
+
+double RobotProblem::objective(const ConstVectorRef& z) const {
+  double f = 0.0;
+  DISCO_CHECK(program_.objective(z, f), "the objective is a polynomial: finite at a finite point");
+  return f * objective_scale(objective_kind(), units_);
+}
+
+double RobotProblem::objective_floor() const {
+  // T_f >= max(lower bound, smallest horizon); E >= 0.
+  const double T = std::max(lower_bound().value_or(0.0), kHorizonMin * units_.time);
+  return objective_kind() == ObjectiveKind::kEnergy ? 0.0 : T;
+}
+
+double RobotProblem::horizon_reach(double T) const {
+  const Objective& o = scene_.objective;
+  if (o.kind == ObjectiveKind::kEnergy) return o.horizon;
+  if (o.kind == ObjectiveKind::kTime) return T;
+  double push = 0.0;  // sum_i Fbar_i^2
+  for (const Robot& r : scene_.robots) push += r.push_bound() * r.push_bound();
+  return T * (1.0 + o.energy_weight * push);
 }
 
 double RobotProblem::horizon(const ConstVectorRef& z) const {

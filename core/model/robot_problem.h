@@ -1,15 +1,17 @@
 // disco — the whole robot model of a scene: Appendix A as a PolynomialProgram.
 //
-//     minimize T_f  subject to  kinematics, dynamics, floor friction, gap,
+//     minimize T_f (or J)  subject to  kinematics, dynamics, floor friction, gap,
 //     nonpenetration, contact friction, avoidance, bounds
 // (one unit each in core/model/, in that order), built in model units
 // (core/model/units.h). Pass a subset of families to build part of the model
 // (derivative tests check each family alone; dynamics is always included,
 // since the force families add their impulses to its rows).
 //
-// The horizon T_f is an unknown with bounds: fix_horizon() pins it (the
-// feasibility phase), limit_horizon() bounds it above (objective reduction),
-// never above the largest horizon T_max of the ModelOptions. The adaptive
+// The objective is the scene's (core/model/objective.h): T_f by default. The
+// horizon T_f is an unknown with bounds: fix_horizon() pins it (the
+// feasibility phase), limit_horizon() bounds it above (objective reduction
+// of time), never above the largest horizon T_max of the ModelOptions; with
+// objective energy it stays at the scene's horizon. The adaptive
 // model (core/model/model_plan.h) builds only what a scene needs up to T_max;
 // set_horizon_max() rebuilds it for another T_max. All times given to or
 // returned by this class are in seconds (SI). The initial guesses of the
@@ -63,10 +65,30 @@ class RobotProblem {
   // Rebuilds the model for T_f <= max_seconds, if that changes it. Every point
   // of the model before (and any reference to program() or layout() data) is
   // then invalid: call it only between solves that share no point.
-  void set_horizon_max(double max_seconds);
+  void set_horizon_max(double max_seconds);  // (objective energy: always its horizon)
   void fix_horizon(double seconds);        // T_f = seconds (<= T_max)
   void limit_horizon(double max_seconds);  // T_f in [minimum, min(max_seconds, T_max)]
   double horizon(const ConstVectorRef& z) const;  // T_f of a point, seconds
+
+  // The objective J (core/model/objective.h) and the bounds the objective reduction puts
+  // on it, in SI (seconds, or N^2 s for energy). For time these are the horizon's bounds.
+  ObjectiveKind objective_kind() const;
+  double objective(const ConstVectorRef& z) const;  // J of a point
+  // J <= value, or J = value (`fixed`); T_f stays free (fixed for energy).
+  void bound_objective(double value, bool fixed);
+  // J free: T_f free up to T_max, or fixed at the scene's horizon for energy (the model
+  // itself; how it is built).
+  void free_objective();
+  // True when T_f is the scene's, not an unknown of the search (objective energy).
+  bool horizon_is_fixed() const { return objective_kind() == ObjectiveKind::kEnergy; }
+  // A value J never goes below on this model: for time (and time + energy) the larger of
+  // the lower bound and the model's smallest horizon; 0 for energy.
+  double objective_floor() const;
+  // The largest T_f (s) of any point with a smaller J than a point at horizon T: T itself for
+  // time; for time + energy T (1 + w sum_i Fbar_i^2), since J <= T + w T sum_i Fbar_i^2 at T
+  // (|F_i| <= Fbar_i) and T_f <= J; for energy the scene's horizon. The model a reduction
+  // from a feasible point at T needs (set_horizon_max).
+  double horizon_reach(double T) const;
   std::optional<double> lower_bound() const;      // seconds (core/model/lower_bound.h)
   std::optional<double> reference_time() const;   // seconds: a scale, not a bound
 
@@ -98,6 +120,7 @@ class RobotProblem {
   ModelPlan plan_;
   PolynomialProgram program_;
   std::optional<Layout> layout_;  // set by build()
+  int objective_row_ = -1;        // the row of J for objectives other than time
 };
 
 }  // namespace disco

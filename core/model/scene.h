@@ -95,6 +95,18 @@ struct KeyOrigin {
   std::string key;
 };
 
+// What the model minimises (scene file `objective`; core/model/objective.h):
+//   kTime        T_f, the paper's objective (the default);
+//   kEnergy      E = sum over robots and intervals of h |F^t|^2 [N^2 s] at the fixed
+//                T_f = `horizon`;
+//   kTimeEnergy  T_f + w E [s], w = `energy_weight` [1/N^2], T_f free.
+enum class ObjectiveKind { kTime, kEnergy, kTimeEnergy };
+struct Objective {
+  ObjectiveKind kind = ObjectiveKind::kTime;
+  double horizon = 0;        // kEnergy: the fixed T_f > 0 [s]; 0 otherwise
+  double energy_weight = 0;  // kTimeEnergy: w > 0 [1/N^2]; 0 otherwise
+};
+
 struct Scene {
   std::string name;             // the scenario's name
   std::string source;           // the file it came from (for messages)
@@ -106,6 +118,7 @@ struct Scene {
   std::vector<Obstacle> obstacles;
   // One per (disk, obstacle): i indexes robots, j obstacles; in (j, i) order.
   std::vector<Pair> obstacle_pairs;
+  Objective objective;
 };
 
 }  // namespace disco

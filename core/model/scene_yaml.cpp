@@ -14,8 +14,10 @@
 
 #include "core/config/yaml_nodes.h"
 #include "core/model/gap.h"
+#include "core/model/lower_bound.h"
 #include "core/model/obstacles.h"
 #include "core/model/reachability.h"
+#include "core/util/suggest.h"
 #include "core/util/errors.h"
 
 namespace disco {
@@ -28,7 +30,7 @@ using yaml::override_fail;
 
 const std::vector<std::string> kRootKeys = {"scenario", "description", "steps",  "gravity",
                                             "defaults", "robots",      "objects", "obstacles",
-                                            "pairs"};
+                                            "pairs",    "objective"};
 // Robot keys that `defaults` may also give, in the order they are read.
 const std::vector<std::string> kFieldKeys = {
     "radius", "mass", "inertia", "mu", "damping", "force_max", "force_dims", "force_axis", "K"};
@@ -43,6 +45,8 @@ const std::vector<std::string> kPairOverrideKeys = {"robots", "mode", "safe_dist
 const std::vector<std::string> kObstacleKeys = {"name", "disk", "wall", "mode", "safe_distance", "mu"};
 const std::vector<std::string> kDiskObstacleKeys = {"x", "y", "radius", "vx", "vy"};
 const std::vector<std::string> kWallKeys = {"from", "to", "thickness"};
+const std::vector<std::string> kObjectiveKeys = {"kind", "horizon", "energy_weight"};
+const std::vector<std::string> kObjectiveKinds = {"time", "energy", "time + energy"};
 
 constexpr double kTouchTolerance = 1e-12;  // relative, for the start-overlap checks
 
@@ -739,6 +743,61 @@ void check_targets(const Doc& doc, const DiskNodes& nodes, const Scene& scene) {
            "unreachable: " + u.reason);
 }
 
+// `objective`: a kind alone ("time"), or a mapping {kind, horizon (energy), energy_weight
+// (time + energy)}. Read after the disks: an energy horizon below the scene's lower bound on
+// T_f is refused here, since no motion reaches the targets in it.
+Objective read_objective(const Doc& doc, const YAML::Node& node, const Scene& scene) {
+  const bool map = node.IsMap();
+  const auto fields = map ? doc.mapping(node, "objective", kObjectiveKeys, false)
+                          : std::map<std::string, YAML::Node>{};
+  const auto kind_it = fields.find("kind");
+  if (map && kind_it == fields.end()) doc.fail(node, "objective.kind", "is required but missing");
+  const YAML::Node kind_node = map ? kind_it->second : node;
+  const std::string kind_key = map ? "objective.kind" : "objective";
+  std::string word = doc.text(kind_node, kind_key);
+  // "time+energy", "time +  energy": one spelling.
+  std::string compact;
+  for (char c : word)
+    if (c != ' ') compact += c;
+  if (compact == "time+energy") word = "time + energy";
+  Objective o;
+  if (word == "time")
+    o.kind = ObjectiveKind::kTime;
+  else if (word == "energy")
+    o.kind = ObjectiveKind::kEnergy;
+  else if (word == "time + energy")
+    o.kind = ObjectiveKind::kTimeEnergy;
+  else
+    doc.fail(kind_node, kind_key,
+             "unknown objective " + quote(word) + did_you_mean(word, kObjectiveKinds) +
+                 " (allowed: 'time', 'energy', 'time + energy')");
+  // Each kind takes exactly its own parameter.
+  auto param = [&](const std::string& key, bool needed, const std::string& what) -> double {
+    const auto it = fields.find(key);
+    if (!needed) {
+      if (it != fields.end())
+        doc.fail(it->second, "objective." + key, "applies to objective " + what + " only, not " + quote(word));
+      return 0.0;
+    }
+    if (it == fields.end())
+      doc.fail(node, "objective." + key,
+               "is required for objective " + quote(word) + " (write objective: {kind: " + word +
+                   ", " + key + ": ...})");
+    return doc.positive(it->second, "objective." + key);
+  };
+  o.horizon = param("horizon", o.kind == ObjectiveKind::kEnergy, "'energy'");
+  o.energy_weight = param("energy_weight", o.kind == ObjectiveKind::kTimeEnergy, "'time + energy'");
+  if (o.kind == ObjectiveKind::kEnergy) {
+    const auto lb = scene_lower_bound(scene);
+    if (lb && o.horizon < *lb)
+      doc.fail(fields.at("horizon"), "objective.horizon",
+               "is below the scene's lower bound on T_f, " + show(*lb) +
+                   " s (core/model/lower_bound.h): no motion reaches the targets in " +
+                   show(o.horizon) + " s");
+  }
+  return o;
+}
+
 Scene validate(const Doc& doc, const YAML::Node& root, const std::string& source) {
   const auto fields = doc.mapping(root, "", kRootKeys, false);
   auto required = [&](const std::string& key) -> const YAML::Node& {
@@ -784,6 +843,8 @@ Scene validate(const Doc& doc, const YAML::Node& root, const std::string& source
   check_start_clearance(doc, nodes, scene);
   check_obstacle_clearance(doc, nodes, scene);
   check_targets(doc, nodes, scene);
+  if (const auto it = fields.find("objective"); it != fields.end())
+    scene.objective = read_objective(doc, it->second, scene);
   return scene;
 }
 

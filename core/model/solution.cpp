@@ -10,6 +10,7 @@
 
 #include "core/model/contact_friction.h"
 #include "core/model/floor_friction.h"
+#include "core/model/objective.h"
 #include "core/model/gap.h"
 #include "core/model/lower_bound.h"
 #include "core/model/obstacles.h"
@@ -47,6 +48,15 @@ json solution_json(const RobotProblem& problem, const Vector& z, const SolutionI
   }
   if (info.stationarity) doc["stationarity"] = to_string(*info.stationarity);
   doc["T_f"] = has ? json(problem.horizon(z)) : json(nullptr);
+  {
+    const Objective& o = si.objective;
+    json obj = {{"kind", to_string(o.kind)},
+                {"unit", objective_unit(o.kind)},
+                {"value", has ? json(problem.objective(z)) : json(nullptr)}};
+    if (o.kind == ObjectiveKind::kEnergy) obj["horizon"] = o.horizon;
+    if (o.kind == ObjectiveKind::kTimeEnergy) obj["energy_weight"] = o.energy_weight;
+    doc["objective"] = obj;
+  }
   doc["N_t"] = N;
   doc["h"] = has ? json(problem.horizon(z) / N) : json(nullptr);
   if (has) {

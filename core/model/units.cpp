@@ -39,6 +39,9 @@ Scene to_model_units(const Scene& scene, const Units& u) {
     }
   }
   for (auto& p : s.pairs) p.safe_distance /= u.length;
+  // T_f + w E in model units is (T_f + w E) / T with E / (F^2 T): w scales by F^2.
+  s.objective.horizon /= u.time;
+  s.objective.energy_weight *= u.force() * u.force();
   for (auto& p : s.obstacle_pairs) p.safe_distance /= u.length;
   for (auto& ob : s.obstacles) {
     for (int a = 0; a < 2; ++a) {

@@ -26,7 +26,8 @@ struct Units {
 Units choose_units(const Scene& scene);
 
 // The same scene with every quantity divided by its unit (gravity, damping,
-// inertia, positions, velocities, boxes, safe distances; angles unchanged).
+// inertia, positions, velocities, boxes, safe distances, the objective's horizon and energy
+// weight; angles unchanged).
 Scene to_model_units(const Scene& scene, const Units& u);
 
 }  // namespace disco

@@ -10,7 +10,7 @@ page(report) takes the plain data gathered by scripts/report:
 """
 import html
 
-from viz.search_plots import has_final_point
+from viz.search_plots import has_final_point, is_time, objective_label, value_of
 
 CSS = """
 :root { --fg: #1d232a; --muted: #5b6570; --line: #d9dee3; --head: #f3f5f7; --best: #fff4c2;
@@ -68,9 +68,10 @@ def anchor(name):
 
 
 def gap_text(best):
-    """(gap text, against what) of a scene: vs its lower bound, else vs its reference time."""
+    """(gap text, against what) of a scene: vs its lower bound, else vs its reference time
+    (both on T_f: none for another objective)."""
     T = best.get("T_f")
-    if T is None:
+    if T is None or not is_time(best):
         return "–", ""
     for key, what in (("lower_bound", ""), ("reference_time", " vs ref")):
         ref = best.get(key)
@@ -117,6 +118,14 @@ def disks_cell(info):
     return f"{info.get('robots', '–')}" + (f" + {objects} obj." if objects else "")
 
 
+def objective_cell(b):
+    """Below T_f in the summary: the objective's value when it is not time."""
+    if is_time(b) or value_of(b) is None:
+        return ""
+    return (f"<br><span class=muted>{esc(b['objective'])}: "
+            f"{value_of(b):.6g} {esc(b.get('objective_unit', ''))}</span>")
+
+
 def summary_table(scenes):
     head = ("<tr><th>scene</th><th class=num>robots / pairs</th><th class=num>N_t</th>"
             "<th class=num>T_f [s]</th><th class=num>lower bound [s]</th><th class=num>gap</th>"
@@ -138,7 +147,7 @@ def summary_table(scenes):
             f'<tr><td><a href="#{anchor(s["name"])}">{esc(s["name"])}</a></td>'
             f"<td class=num>{disks_cell(info)} / {info.get('pairs', '–')}</td>"
             f"<td class=num>{info.get('N_t', '–')}</td>"
-            f"<td class=num><b>{fmt(b.get('T_f'), '.6f')}</b></td>"
+            f"<td class=num><b>{fmt(b.get('T_f'), '.6f')}</b>{objective_cell(b)}</td>"
             f"<td class=num>{fmt(b.get('lower_bound'), '.6f', 'none')}</td>"
             f"<td class=num>{esc(gap)}</td>"
             f"<td class=num>{scene_time(s, 'time_to_first_feasible_s')}</td>"
@@ -188,11 +197,11 @@ def start_table(s):
     runs = s["runs"]
     if not runs:
         return '<p class="muted">No runs.jsonl lines for this scene.</p>'
-    best_T = s["best"].get("T_f")
-    ordered = sorted(runs, key=lambda r: (not has_final_point(r), r.get("T_f") or 0.0,
+    best_T = value_of(s["best"])
+    ordered = sorted(runs, key=lambda r: (not has_final_point(r), value_of(r) or 0.0,
                                           r["start"]))
     head = ("<tr><th class=num>start</th><th>guess</th><th>schedule</th><th>status</th>"
-            "<th class=num>T_f [s]</th><th class=num>vs best</th>"
+            f"<th class=num>{esc(objective_label(s['best']))}</th><th class=num>vs best</th>"
             "<th class=num>first feasible [s]</th><th class=num>best at [s]</th>"
             "<th class=num>run [s]</th><th class=num>solves / iterations</th>"
             "<th class=num>rank</th><th class=num>certificate</th></tr>")
@@ -200,7 +209,7 @@ def start_table(s):
     for r in ordered:
         solved = has_final_point(r)
         best = r["start"] == s["best"].get("start")
-        vs = ("best" if best else f"{100.0 * (r['T_f'] - best_T) / best_T:+.2f} %"
+        vs = ("best" if best else f"{100.0 * (value_of(r) - best_T) / best_T:+.2f} %"
               if solved and best_T else "–")
         sched_text = schedule_text(r)
         detail = f"<br><span class=muted>{esc(r['detail'])}</span>" if r.get("detail") else ""
@@ -209,7 +218,7 @@ def start_table(s):
             f'<tr{" class=best" if best else ""}><td class=num>{r["start"]}</td>'
             f"<td>{esc(guess_text or r.get('guess', ''))}</td><td>{sched_text}</td>"
             f"<td>{status_cell(r['status'])}{detail}</td>"
-            f"<td class=num>{fmt(r.get('T_f'), '.6f')}</td><td class=num>{vs}</td>"
+            f"<td class=num>{fmt(value_of(r), '.6f')}</td><td class=num>{vs}</td>"
             f"<td class=num>{fmt(r.get('time_to_first_feasible') if solved else None, '.2f')}</td>"
             f"<td class=num>{fmt(r.get('time_to_best') if solved else None, '.2f')}</td>"
             f"<td class=num>{r.get('seconds', 0.0):.2f}</td>"
@@ -233,13 +242,13 @@ def class_table(s):
         if isinstance(c, dict) and has_final_point(r):
             e = ended.setdefault(c.get("key", ""), {"n": 0, "best": None, "start": None})
             e["n"] += 1
-            if e["best"] is None or r["T_f"] < e["best"]:
-                e["best"], e["start"] = r["T_f"], r["start"]
+            if e["best"] is None or value_of(r) < e["best"]:
+                e["best"], e["start"] = value_of(r), r["start"]
     if not ended:
         return ""
-    best_T = s["best"].get("T_f")
+    best_T = value_of(s["best"])
     head = ("<tr><th>class (pair: turn of j around i, who passes first, touch)</th>"
-            "<th class=num>best T_f [s]</th><th class=num>vs best</th><th class=num>best start</th>"
+            f"<th class=num>best {esc(objective_label(s['best']))}</th><th class=num>vs best</th><th class=num>best start</th>"
             "<th class=num>starts ended in it</th><th class=num>guesses of it</th></tr>")
     rows = []
     for key, e in sorted(ended.items(), key=lambda kv: kv[1]["best"]):
@@ -271,7 +280,11 @@ def scene_section(s):
                  if info.get("status_detail") else ""))]
     if b.get("T_f") is not None:
         gap, _ = gap_text(b)
-        facts.append(("T_f", f"<b>{b['T_f']:.6f} s</b>, gap {esc(gap)}"))
+        facts.append(("T_f", f"<b>{b['T_f']:.6f} s</b>, gap {esc(gap)}" if is_time(b)
+                      else f"{b['T_f']:.6f} s"))
+        if not is_time(b) and value_of(b) is not None:
+            facts.append(("objective", f"<b>{esc(b['objective'])} = {value_of(b):.6g} "
+                                       f"{esc(b.get('objective_unit', ''))}</b>"))
     if info.get("best_description"):
         facts.append(("found by", esc(info["best_description"])
                       + (f", {b['time_to_best_s']:.1f} s into the scene"

@@ -1,7 +1,8 @@
 """Plots of a multi-start search for one scene (scripts/report), from its runs.jsonl lines and
 its best.json entry:
 
-- progress: T_f against search time for every start. A start runs from its hand-out
+- progress: T_f against search time for every start (for another objective, best.json
+  "objective", its value J instead, here and below). A start runs from its hand-out
   (finished_s - seconds) to its end; its line steps down at every new best of its `history`
   ([seconds within the start, T_f]). The black stairs are the scene's best so far over all
   starts. Times count from the scene's first hand-out (best.json `started_s`), as best.json's
@@ -39,6 +40,8 @@ def guess_colors(kinds):
 
 
 def _reference_line(ax, scene):
+    if not is_time(scene):  # the bounds are on T_f, not on another objective
+        return
     if scene.get("lower_bound") is not None:
         ax.axhline(scene["lower_bound"], color="0.25", lw=0.9, ls="--",
                    label=f"lower bound {scene['lower_bound']:.4f} s")
@@ -52,15 +55,33 @@ def _reference_line(ax, scene):
 FINAL_POINT = ("solved", "dominated")
 
 
+def value_of(d):
+    """The objective J of a runs.jsonl line or a best.json scene (core/model/objective.h):
+    "value", which is T_f for objective time (lines of an older disco have T_f only)."""
+    v = d.get("value")
+    return d.get("T_f") if v is None and "value" not in d else v
+
+
+def objective_label(best):
+    """The axis and column label of J for a best.json scene: "T_f [s]" for objective time."""
+    kind = best.get("objective", "time")
+    unit = best.get("objective_unit", "s")
+    return {"time": "T_f", "energy": "E", "time + energy": "T_f + w E"}.get(kind, kind) + f" [{unit}]"
+
+
+def is_time(best):
+    return best.get("objective", "time") == "time"
+
+
 def has_final_point(run):
-    return run["status"] in FINAL_POINT and run.get("T_f") is not None
+    return run["status"] in FINAL_POINT and value_of(run) is not None
 
 
 def start_curve(run, scene_start):
-    """[(search time since the scene's first hand-out, T_f)] of a solved start's new bests,
+    """[(search time since the scene's first hand-out, J)] of a solved start's new bests,
     and its end time. Lines written before `history` existed give their best only."""
     handed = run["finished_s"] - run["seconds"] - scene_start
-    hist = run.get("history") or [[run.get("time_to_best", run["seconds"]), run["T_f"]]]
+    hist = run.get("history") or [[run.get("time_to_best", run["seconds"]), value_of(run)]]
     return [(handed + t, tf) for t, tf in hist], handed + run["seconds"]
 
 
@@ -116,9 +137,9 @@ def plot_progress(runs, scene, out):
     ax.legend(handles=handles, fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0),
               frameon=False, borderaxespad=0.0)
     ax.set_xlabel("search time since the scene's first hand-out [s]")
-    ax.set_ylabel("T_f [s]")
+    ax.set_ylabel(objective_label(scene))
     left_out = len(runs) - len(timed)
-    ax.set_title(f"{scene['name']}: T_f of every start against time"
+    ax.set_title(f"{scene['name']}: {objective_label(scene).split(' [')[0]} of every start against time"
                  + (f" ({left_out} start(s) of an earlier run or without times left out)"
                     if left_out else ""), fontsize=11 if not left_out else 9)
     ax.set_xlim(left=0.0)
@@ -139,7 +160,7 @@ def plot_spread(runs, scene, out):
         for m, r in enumerate(solved):
             dx = 0.0 if n == 1 else 0.3 * (2.0 * m / (n - 1) - 1.0)  # spread evenly, no overlap
             best = r["start"] == scene.get("start")
-            ax.plot([x + dx], [r["T_f"]], ls="none", marker="*" if best else "o",
+            ax.plot([x + dx], [value_of(r)], ls="none", marker="*" if best else "o",
                     ms=14 if best else 6, mfc="gold" if best else colors[k],
                     mec="black" if best else colors[k], alpha=1.0 if best else 0.8,
                     zorder=4 if best else 3)
@@ -152,8 +173,8 @@ def plot_spread(runs, scene, out):
     lo, hi = ax.get_ylim()
     ax.set_ylim(lo - 0.08 * (hi - lo), hi)  # room for the counts
     ax.set_xlabel("initial guess")
-    ax.set_ylabel("final T_f [s]")
-    ax.set_title(f"{scene['name']}: final T_f of every start, by initial guess "
+    ax.set_ylabel("final " + objective_label(scene))
+    ax.set_title(f"{scene['name']}: final {objective_label(scene).split(' [')[0]} of every start, by initial guess "
                  "(star: the best)", fontsize=11)
     if ax.get_legend_handles_labels()[0]:
         ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False,
