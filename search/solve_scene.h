@@ -6,6 +6,7 @@
 // function (search/run_start.h).
 #pragma once
 
+#include <limits>
 #include <memory>
 
 #include "core/config/settings.h"
@@ -22,8 +23,9 @@ struct SceneSolve {
   SolutionInfo info;  // status, certificate of the best point, timing
   Vector z;           // best point (model units), empty if none
   bool solved() const { return result.found; }
-  double value() const { return result.best_value; }  // J of the best point (SI)
-  double T_f() const { return problem->horizon(z); }   // s, of the best point (solved only)
+  // J (SI) and T_f (s) of the best point; NaN without one.
+  double value() const { return solved() ? result.best_value : std::numeric_limits<double>::quiet_NaN(); }
+  double T_f() const { return z.size() > 0 ? problem->horizon(z) : std::numeric_limits<double>::quiet_NaN(); }
 };
 
 // The steps of a coarse-to-fine start's coarse stage (feasibility.coarse_fraction):
