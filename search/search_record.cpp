@@ -179,8 +179,12 @@ void SearchRecord::recover_lines(const std::string& path, std::uint64_t seed,
       }
     }
     const Best& b = best_[s];
-    if (b.start >= 0 && !(doc.is_object() && doc.value("value", doc.value("T_f", json())) == json(b.value) &&
-                          prov.value("start", -1) == b.start))
+    // The file's J: its objective's value (files of an older disco: T_f, objective time).
+    const json held = !doc.is_object()                                   ? json()
+                      : doc.contains("objective") && doc["objective"].is_object()
+                          ? doc["objective"].value("value", json())
+                          : doc.value("T_f", json());
+    if (b.start >= 0 && !(held == json(b.value) && prov.value("start", -1) == b.start))
       spdlog::warn("resume: {}'s best in {} is start {} ({} {:.6f}), but {} does not hold it",
                    plan_.scenes[s].scene.name, path, b.start,
                    to_string(plan_.scenes[s].scene.objective.kind), b.value, file);

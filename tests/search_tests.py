@@ -368,6 +368,19 @@ elif MODE == "manifest":
     inv = json.load(open(os.path.join(out, "manifest.json")))["invocations"]
     check([i["resume"] for i in inv] == [False, True] and inv[1]["starts"] == 3,
           "the manifest lists both invocations")
+    check("does not hold it" not in r.stderr, "--resume finds the best in best/SCENE.json")
+
+    # Another objective: best/SCENE.json holds the best's J under objective.value, not in T_f.
+    energy = os.path.join(os.path.dirname(BENCH), "../scenarios/one_robot_axis_energy.yaml")
+    energy_out = os.path.join(WORK, "manifest_energy")
+    shutil.rmtree(energy_out, ignore_errors=True)
+    for extra in ([], ["--resume"]):
+        r = subprocess.run([DISCO, "search", energy, "--seed", "7", "--starts", "1", "--set",
+                            "scene.steps=20", "--out", energy_out, *extra],
+                           env=ENV, capture_output=True, text=True)
+    check(r.returncode == 0 and "resume: 1 start(s) already in" in r.stderr and
+          "does not hold it" not in r.stderr,
+          f"--resume of an energy search finds its best in best/SCENE.json ({r.stderr[-300:]!r})")
 
     r = run("--starts", "1", "--set", "scene.steps=20", "--force", scenes=(swap,))
     check(r.returncode == 0 and [x["scene"] for x in runs(out)] == ["two_robots_swap_avoid"] and

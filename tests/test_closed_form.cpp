@@ -45,6 +45,16 @@ double solve_time(const Case& c, int steps, double* certificate_violation = null
   return run.T_f();
 }
 
+// One N_t of a convergence check: the relative error within `tol` at N_t = `at`, and below the
+// error at the fewer steps before (`previous`, updated).
+void expect_converging(double err, double& previous, int steps, int at, double tol) {
+  if (steps == at) {
+    EXPECT_LE(err, tol) << "N_t = " << at << " must be within " << 100 * tol << " %";
+  }
+  EXPECT_LT(err, previous) << "error must shrink as N_t grows (N_t = " << steps << ")";
+  previous = err;
+}
+
 const Case kAxis{"one_robot_axis.yaml", 10.0, 5.0};
 const Case kDiagonal{"one_robot_diagonal.yaml", 8.0 * std::sqrt(2.0), 5.0 * std::sqrt(2.0)};
 
@@ -59,11 +69,7 @@ void check_convergence(const Case& c) {
                 err);
     EXPECT_LE(viol, 1e-6);
     EXPECT_LE(compl_, 1e-6);
-    if (steps == 100) {
-      EXPECT_LE(err, 1e-3) << "N_t = 100 must be within 0.1 %";
-    }
-    EXPECT_LT(err, previous) << "error must shrink as N_t grows (N_t = " << steps << ")";
-    previous = err;
+    expect_converging(err, previous, steps, 100, 1e-3);
   }
 }
 
@@ -101,9 +107,7 @@ TEST(ClosedForm, PushingACoinToRestConverges) {
     const double err = std::abs(run.T_f() - exact) / exact;
     std::printf("push_coin_line N_t=%d T_f=%.7f closed form=%.7f rel.error=%.3e\n", steps,
                 run.T_f(), exact, err);
-    if (steps == 50) EXPECT_LE(err, 5e-3) << "N_t = 50 must be within 0.5 %";
-    EXPECT_LT(err, previous) << "error must shrink as N_t grows (N_t = " << steps << ")";
-    previous = err;
+    expect_converging(err, previous, steps, 50, 5e-3);
   }
 }
 
@@ -168,9 +172,7 @@ TEST(ClosedForm, LeastEffortMoveInAFixedTimeRestsAndConverges) {
     const double err = std::abs(run.value() - exact) / exact;
     std::printf("one_robot_axis_energy N_t=%d E=%.7f closed form=%.7f rel.error=%.3e\n", steps,
                 run.value(), exact, err);
-    if (steps == 50) EXPECT_LE(err, 5e-3) << "N_t = 50 must be within 0.5 %";
-    EXPECT_LT(err, previous) << "error must shrink as N_t grows (N_t = " << steps << ")";
-    previous = err;
+    expect_converging(err, previous, steps, 50, 5e-3);
     // It rests for T - tau: at least that many intervals, less one for the discretisation,
     // end at zero speed (the floor holds it, no push).
     const auto vx = sol["robots"][0]["vx"].get<std::vector<double>>();

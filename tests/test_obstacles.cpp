@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/config/settings.h"
@@ -65,27 +66,32 @@ TEST(ObstacleScene, DisksWallsAndTheirPairsAreRead) {
 }
 
 TEST(ObstacleScene, BadObstaclesAreErrorsNamingFileLineAndKey) {
-  EXPECT_EQ(error_of(scene_text("  - {name: w, wall: {from: [1, 2], to: [1, 2]}}\n")),
-            "s.yaml:8: key 'obstacles[0].wall.to': a wall needs two distinct ends (got a wall of "
-            "length 0); for a round post use 'disk'");
-  EXPECT_EQ(error_of(scene_text("  - {name: w, wall: {from: [-1, 0.4], to: [1, 0.4], thickness: 0.2}}\n")),
-            "s.yaml:4: key 'robots[0].start': robot 'a' and obstacle 'w' overlap at the start: the "
-            "centre is 0.4 from the obstacle's centre line, less than R + R_obstacle = 0.6");
-  EXPECT_EQ(error_of(scene_text("  - {name: p, disk: {x: 0, y: 0.605, radius: 0.1}}\n")),
-            "s.yaml:4: key 'robots[0].start': robot 'a' and obstacle 'p' (an avoid pair) start too "
-            "close: the centre is 0.605 from the obstacle's centre, less than R + R_obstacle + "
-            "safe_distance = 0.61 (move it, lower the obstacle's safe_distance or use mode contact)");
-  EXPECT_EQ(error_of(scene_text("  - {name: p, disk: {x: 0, y: 3, radius: 0.1}, wall: {from: [0, 0], to: [1, 1]}}\n")),
-            "s.yaml:8: key 'obstacles[0]': an obstacle is either a 'disk' or a 'wall': give exactly "
-            "one of them");
-  EXPECT_EQ(error_of(scene_text("  - {name: p, disk: {x: 0, y: 3, radius: 0.1, vy: 1}, mode: contact}\n")),
-            "s.yaml:8: key 'obstacles[0].mode': a moving obstacle cannot be a contact obstacle (it "
-            "could push, which disco does not model): use mode avoid");
-  EXPECT_EQ(error_of(scene_text("  - {name: coin, disk: {x: 0, y: 3, radius: 0.1}}\n")),
-            "s.yaml:8: key 'obstacles[0].name': duplicate name 'coin' (already used by a robot or "
-            "object)");
-  EXPECT_EQ(error_of(scene_text("  - {name: p, disk: {x: 0, y: 3, radius: 0}}\n")),
-            "s.yaml:8: key 'obstacles[0].disk.radius': must be > 0 (got 0)");
+  // (obstacle entry, message)
+  const std::pair<std::string, std::string> cases[] = {
+      {"{name: w, wall: {from: [1, 2], to: [1, 2]}}",
+       "s.yaml:8: key 'obstacles[0].wall.to': a wall needs two distinct ends (got a wall of "
+       "length 0); for a round post use 'disk'"},
+      {"{name: w, wall: {from: [-1, 0.4], to: [1, 0.4], thickness: 0.2}}",
+       "s.yaml:4: key 'robots[0].start': robot 'a' and obstacle 'w' overlap at the start: the "
+       "centre is 0.4 from the obstacle's centre line, less than R + R_obstacle = 0.6"},
+      {"{name: p, disk: {x: 0, y: 0.605, radius: 0.1}}",
+       "s.yaml:4: key 'robots[0].start': robot 'a' and obstacle 'p' (an avoid pair) start too "
+       "close: the centre is 0.605 from the obstacle's centre, less than R + R_obstacle + "
+       "safe_distance = 0.61 (move it, lower the obstacle's safe_distance or use mode contact)"},
+      {"{name: p, disk: {x: 0, y: 3, radius: 0.1}, wall: {from: [0, 0], to: [1, 1]}}",
+       "s.yaml:8: key 'obstacles[0]': an obstacle is either a 'disk' or a 'wall': give exactly "
+       "one of them"},
+      {"{name: p, disk: {x: 0, y: 3, radius: 0.1, vy: 1}, mode: contact}",
+       "s.yaml:8: key 'obstacles[0].mode': a moving obstacle cannot be a contact obstacle (it "
+       "could push, which disco does not model): use mode avoid"},
+      {"{name: coin, disk: {x: 0, y: 3, radius: 0.1}}",
+       "s.yaml:8: key 'obstacles[0].name': duplicate name 'coin' (already used by a robot or "
+       "object)"},
+      {"{name: p, disk: {x: 0, y: 3, radius: 0}}",
+       "s.yaml:8: key 'obstacles[0].disk.radius': must be > 0 (got 0)"},
+  };
+  for (const auto& [entry, message] : cases)
+    EXPECT_EQ(error_of(scene_text("  - " + entry + "\n")), message) << entry;
 }
 
 // A wall from (0, 0) to (2, 0), thickness 0.2, and one robot of radius 0.5 (3 steps).
@@ -122,8 +128,9 @@ TEST(WallProjection, TheExactNearestPointSatisfiesItsRowsInsideAndPastTheEnds) {
   Vector c(P.num_constraints());
   ASSERT_TRUE(P.constraints(z, c));
   for (int r = 0; r < P.num_constraints(); ++r) {
-    if (P.constraint_lower()[r] == P.constraint_upper()[r])
+    if (P.constraint_lower()[r] == P.constraint_upper()[r]) {
       EXPECT_NEAR(c[r], P.constraint_lower()[r], 1e-12) << "row " << r;
+    }
   }
   for (const auto& pr : P.complementarity_pairs())
     EXPECT_NEAR(side_value(pr.g, z, c) * side_value(pr.h, z, c), 0.0, 1e-12);
