@@ -181,6 +181,80 @@ std::vector<int> pushed_objects(const Scene& scene) {
   return pushes;
 }
 
+// Objects left without a pusher by pushed_objects() (more moving objects than pushers):
+// each is added to the queue of the lone pusher (the only one of its object) whose last
+// object ends nearest to it. A pusher with a queue pushes its objects one after the other:
+// it goes straight to the contact point straight behind the next object while every object
+// waits, pushes it to its target (smoothstep), and goes on; each leg takes a share of the
+// horizon in proportion to its length. An object waits at its start before its push and
+// rests at its target after it.
+void push_the_rest(const Scene& scene, const std::vector<int>& pushes, Paths& paths) {
+  const int N = scene.steps, n = static_cast<int>(scene.robots.size());
+  std::vector<std::vector<int>> queue(n);
+  std::vector<int> team_size(n, 0);
+  for (int i = 0; i < n; ++i)
+    if (pushes[i] >= 0) ++team_size[pushes[i]];
+  for (int i = 0; i < n; ++i)
+    if (pushes[i] >= 0 && team_size[pushes[i]] == 1) queue[i].push_back(pushes[i]);
+  for (int o = 0; o < n; ++o) {
+    const Robot& ob = scene.robots[o];
+    if (!ob.object || team_size[o] > 0 || straight_move(ob).length() == 0.0) continue;
+    int best = -1;
+    double nearest = kInf;
+    for (const Pair& p : scene.pairs) {
+      if (p.mode != PairMode::kContact || (p.i != o && p.j != o)) continue;
+      const int i = p.i == o ? p.j : p.i;
+      if (queue[i].empty()) continue;
+      const StraightMove last = straight_move(scene.robots[queue[i].back()]);
+      const double d = std::hypot(ob.start[kX] - last.to[kX], ob.start[kY] - last.to[kY]);
+      if (d < nearest) nearest = d, best = i;
+    }
+    if (best >= 0) queue[best].push_back(o), team_size[o] = 1;
+  }
+  for (int i = 0; i < n; ++i) {
+    if (queue[i].size() < 2) continue;
+    // The legs: (from, to) of the robot, and the object pushed (-1: the way to it).
+    struct Leg {
+      std::array<double, 2> from, to;
+      int object;
+    };
+    std::vector<Leg> legs;
+    std::array<double, 2> at{scene.robots[i].start[kX], scene.robots[i].start[kY]};
+    for (int o : queue[i]) {
+      const StraightMove move = straight_move(scene.robots[o]);
+      const double L = move.length(), R = scene.robots[i].radius + scene.robots[o].radius;
+      const double ux = (move.to[kX] - move.from[kX]) / L, uy = (move.to[kY] - move.from[kY]) / L;
+      const std::array<double, 2> behind{move.from[kX] - R * ux, move.from[kY] - R * uy};
+      const std::array<double, 2> done{move.to[kX] - R * ux, move.to[kY] - R * uy};
+      legs.push_back({at, behind, -1});
+      legs.push_back({behind, done, o});
+      at = done;
+    }
+    std::vector<double> ends;  // the share of the horizon at each leg's end
+    double total = 0.0;
+    for (const Leg& l : legs) ends.push_back(total += std::hypot(l.to[0] - l.from[0], l.to[1] - l.from[1]));
+    for (double& e : ends) e /= total;
+    for (int t = 1; t <= N; ++t) {
+      const double tau = static_cast<double>(t) / N;
+      std::size_t k = 0;
+      while (k + 1 < legs.size() && tau > ends[k]) ++k;
+      const double begin = k == 0 ? 0.0 : ends[k - 1];
+      const double w = ends[k] > begin ? smoothstep(std::clamp((tau - begin) / (ends[k] - begin), 0.0, 1.0)) : 1.0;
+      const Leg& l = legs[k];
+      paths[i][t][kX] = l.from[0] + w * (l.to[0] - l.from[0]);
+      paths[i][t][kY] = l.from[1] + w * (l.to[1] - l.from[1]);
+      for (std::size_t m = 0; m < legs.size(); ++m) {
+        const int o = legs[m].object;
+        if (o < 0) continue;
+        const StraightMove move = straight_move(scene.robots[o]);
+        const double f = m < k ? 1.0 : m == k ? w : 0.0;
+        for (int c : {kX, kY, kPhi}) paths[o][t][c] = move.from[c] + f * (move.to[c] - move.from[c]);
+      }
+    }
+    for (int o : queue[i]) paths[o][N] = straight_move(scene.robots[o]).to;  // in its target
+  }
+}
+
 // Robots push the objects they are assigned (pushed_objects): each goes straight to its
 // contact point behind the object (the m-th of k pushers at angle (m - (k - 1) / 2) pi / 4
 // from straight behind), while the object waits, then moves with it, touching.
@@ -234,6 +308,24 @@ void follow_objects(const Scene& scene, Paths& paths) {
       paths[team[m]][N][kY] = move.to[kY] + offset[m][1];
     }
   }
+  push_the_rest(scene, pushes, paths);
+}
+
+// The point at the share w in [0, 1] of the length of `way`.
+std::array<double, 2> point_along(const Way& way, double w) {
+  double total = 0.0;
+  for (std::size_t k = 1; k < way.size(); ++k)
+    total += std::hypot(way[k][0] - way[k - 1][0], way[k][1] - way[k - 1][1]);
+  double left = w * total;
+  for (std::size_t k = 1; k < way.size(); ++k) {
+    const double len = std::hypot(way[k][0] - way[k - 1][0], way[k][1] - way[k - 1][1]);
+    if (left <= len && len > 0.0) {
+      const double f = left / len;
+      return {way[k - 1][0] + f * (way[k][0] - way[k - 1][0]), way[k - 1][1] + f * (way[k][1] - way[k - 1][1])};
+    }
+    left -= len;
+  }
+  return way.back();
 }
 
 // (robot, tau, &ox, &oy); the t = N point is the target point.
@@ -244,6 +336,7 @@ Paths build_paths(const Scene& scene, Warp&& warp, Offset&& offset) {
   for (int i = 0; i < nr; ++i) {
     const Robot& rb = scene.robots[i];
     const StraightMove m = straight_move(rb);
+    const Way way = way_around_obstacles(scene, i);
     paths[i][0] = m.from;
     for (int t = 1; t < N; ++t) {
       const double tau = static_cast<double>(t) / N;
@@ -251,9 +344,10 @@ Paths build_paths(const Scene& scene, Warp&& warp, Offset&& offset) {
       double ox = 0.0, oy = 0.0;
       offset(i, tau, ox, oy);
       project(rb, ox, oy);
-      for (int c : {kX, kY, kPhi}) paths[i][t][c] = m.from[c] + w * (m.to[c] - m.from[c]);
-      paths[i][t][kX] += ox;
-      paths[i][t][kY] += oy;
+      const auto at = point_along(way, w);
+      paths[i][t][kX] = at[0] + ox;
+      paths[i][t][kY] = at[1] + oy;
+      paths[i][t][kPhi] = m.from[kPhi] + w * (m.to[kPhi] - m.from[kPhi]);
     }
     paths[i][N] = m.to;
   }
@@ -262,6 +356,71 @@ Paths build_paths(const Scene& scene, Warp&& warp, Offset&& offset) {
 }
 
 }  // namespace
+
+Way way_around_obstacles(const Scene& scene, int robot) {
+  const Robot& rb = scene.robots[robot];
+  const StraightMove m = straight_move(rb);
+  const std::array<double, 2> from{m.from[kX], m.from[kY]}, to{m.to[kX], m.to[kY]};
+  // The fixed obstacles and this disk's clearance from each.
+  std::vector<std::pair<const Obstacle*, double>> fixed;
+  for (const Pair& p : scene.obstacle_pairs) {
+    const Obstacle& ob = scene.obstacles[p.j];
+    const bool moves = ob.shape == ObstacleShape::kDisk && (ob.velocity[0] != 0.0 || ob.velocity[1] != 0.0);
+    if (p.i == robot && !moves) fixed.emplace_back(&ob, obstacle_clearance(scene, p));
+  }
+  auto clear = [&](const std::array<double, 2>& a, const std::array<double, 2>& b) {
+    for (const auto& [ob, c] : fixed)
+      if (swept_distance(*ob, a, b, 0.0, 0.0) < c) return false;
+    return true;
+  };
+  if (fixed.empty() || clear(from, to) || rb.force_dims == 1) return {from, to};
+  // Corners around each obstacle at kWayMargin times the clearance: 8 around a post's
+  // centre; 5 around each end of a wall (straight on, 45 and 90 degrees to either side).
+  std::vector<std::array<double, 2>> node{from, to};
+  for (const auto& [ob, c] : fixed) {
+    const double r = kWayMargin * c;
+    auto around = [&](const std::array<double, 2>& centre, double ux, double uy, const std::vector<double>& angles) {
+      for (double a : angles)
+        node.push_back({centre[0] + r * (std::cos(a) * ux - std::sin(a) * uy),
+                        centre[1] + r * (std::sin(a) * ux + std::cos(a) * uy)});
+    };
+    if (ob->shape == ObstacleShape::kDisk) {
+      around(ob->from, 1.0, 0.0, {0, kPi / 4, kPi / 2, 3 * kPi / 4, kPi, 5 * kPi / 4, 3 * kPi / 2, 7 * kPi / 4});
+    } else {
+      const double dx = ob->to[0] - ob->from[0], dy = ob->to[1] - ob->from[1], len = std::hypot(dx, dy);
+      const std::vector<double> fan{0, kPi / 4, -kPi / 4, kPi / 2, -kPi / 2};
+      around(ob->to, dx / len, dy / len, fan);
+      around(ob->from, -dx / len, -dy / len, fan);
+    }
+  }
+  const int n = static_cast<int>(node.size());
+  std::vector<bool> usable(n, true);
+  for (int k = 2; k < n; ++k)
+    for (const auto& [ob, c] : fixed)
+      if (obstacle_distance(*ob, node[k], 0.0) < c) usable[k] = false;
+  // Dijkstra on the visibility graph of the usable corners (n is small: O(n^2) edges).
+  std::vector<double> dist(n, kInf);
+  std::vector<int> prev(n, -1);
+  std::vector<bool> done(n, false);
+  dist[0] = 0.0;
+  for (int round = 0; round < n; ++round) {
+    int u = -1;
+    for (int k = 0; k < n; ++k)
+      if (!done[k] && usable[k] && std::isfinite(dist[k]) && (u < 0 || dist[k] < dist[u])) u = k;
+    if (u < 0 || u == 1) break;
+    done[u] = true;
+    for (int v = 0; v < n; ++v) {
+      if (done[v] || !usable[v]) continue;
+      const double d = dist[u] + std::hypot(node[v][0] - node[u][0], node[v][1] - node[u][1]);
+      if (d < dist[v] && clear(node[u], node[v])) dist[v] = d, prev[v] = u;
+    }
+  }
+  if (prev[1] < 0) return {from, to};  // no way round: closed in
+  Way way;
+  for (int k = 1; k >= 0; k = prev[k]) way.push_back(node[k]);
+  std::reverse(way.begin(), way.end());
+  return way;
+}
 
 Paths detour_paths(const Scene& scene, int side) {
   return detour_paths(scene, side > 0 ? 0u : ~std::uint64_t{0});

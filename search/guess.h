@@ -20,6 +20,18 @@
 //   given               a trajectory's paths (search/trajectory.h: `--guess FILE`, or the
 //                       coarse answer of a coarse-to-fine start), at any horizon.
 //
+// Obstacles. A robot's move runs along its way around the fixed obstacles
+// (way_around_obstacles): the straight segment where it keeps each obstacle's clearance
+// (R_i + R_o, + d_s for an avoid pair; core/model/obstacles.h), else the shortest polyline
+// through corners kWayMargin times the clearance from the obstacles (8 around a post, 5
+// around each end of a wall) whose legs all keep it. Timings and offsets below apply along
+// the way as along the straight move. Once no step could cross a wall (core/model/
+// swept.h), the doorway's (configs/scenarios/doorway.yaml) first feasibility solve from the
+// straight guess through its wall took 897, 126, 1,150 and 1,554 iterations at 20, 30, 40
+// and 50 steps; along the way round 287, 176, 89 and 214 (without swept rows, from the
+// straight guess: 228, 258, 168, 202). A robot closed in (no way round) and one driven
+// along one axis (force_dims 1) keep the straight move; moving obstacles are not avoided.
+//
 // Paths. Every offset added here vanishes at t = 0 and t = N, and the point at t = N is
 // the target pose exactly. A robot with force_dims 1 cannot push sideways: its offsets
 // are projected on its force axis (only its timing along the axis changes).
@@ -33,7 +45,12 @@
 // the object's move), at most a half. An object without pushers follows its own path as a
 // robot would. On scenarios/push_coin_line.yaml this guess took `disco solve` to 1.923142
 // (closed form 1.922751) in 737 iterations, where the straight guess (the finger standing
-// still) ended at a local optimum 2.378989 after 2,756.
+// still) ended at a local optimum 2.378989 after 2,756. Objects left without a pusher (more
+// moving objects than pushers) join the queue of a lone pusher, which pushes them one
+// after the other (push_the_rest in guess.cpp: to the point straight behind the next
+// object, then with it to its target). On scenarios/push_two_coins.yaml the start 0 guess
+// with the second coin moving on its own found no feasible point (and neither did six
+// starts of a search, 2 ranks); with the queue `disco solve` reached 3.215824 s.
 //
 // Conflicts. A pair (i, j) conflicts when, on the straight paths (which share the same
 // timing, so p_j - p_i = d0 + w (dN - d0) is linear in w), the centre distance drops
@@ -98,6 +115,7 @@
 // (tests/test_start.cpp checks). Other kinds keep the smoothstep.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "core/model/robot_problem.h"
@@ -122,6 +140,11 @@ struct StraightMove {
   double length() const;  // of the (x, y) segment
 };
 StraightMove straight_move(const Robot& robot);
+
+// A robot's way from its start to its target position, around the fixed obstacles (above).
+using Way = std::vector<std::array<double, 2>>;
+inline constexpr double kWayMargin = 1.2;
+Way way_around_obstacles(const Scene& scene, int robot);
 
 // The pairs whose straight paths, timed alike, come closer than their clearance.
 struct Conflict {

@@ -80,6 +80,8 @@ CASES = {
     # Unreachable for a reason the checks do not cover: the solve finds no feasible point.
     "object_at_target": {"outcome": "solved", "why": "an object at rest in its target, off the robot's way (avoid pair): the robot alone"},
     "heavy_object": {"outcome": "infeasible", "why": "a disk no push can slide: momentum 313 kg m/s needed, 11.3 N T_f available, T_f >= 27.7 s"},
+    "walled_in": {"outcome": "infeasible", "why": "target outside a closed box of thin walls: "
+                                                  "no step may jump a wall (swept rows)"},
     "spin_short": {"outcome": "infeasible", "why": "a lone robot spinning at the start: damping "
                                                    "stops it 0.025 rad on, short of its phi target"},
     "too_weak": {"outcome": "input_error", "key": "robots[0].force_max", "message": "too weak to move",

@@ -302,6 +302,7 @@ std::string family_name(Family f) {
     case Family::kNonpenetration: return "Nonpenetration";
     case Family::kContactFriction: return "ContactFriction";
     case Family::kAvoidance: return "Avoidance";
+    case Family::kSweptClearance: return "SweptClearance";
     case Family::kBounds: return "Bounds";
   }
   return "Unknown";

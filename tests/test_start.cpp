@@ -681,3 +681,50 @@ TEST(Start, ReductionFromADetourStartReachesACertifiedSolution) {
 
 }  // namespace
 }  // namespace disco
+
+namespace disco {
+namespace {
+
+// A lone finger and two coins (configs/scenarios/push_two_coins.yaml): the guess
+// (search/guess.h, "Pushers") pushes one coin, then the other. Checked on the paths alone:
+// each coin waits at its start, then moves with the finger touching it (centre distance
+// R_f + R_c) up to its last moving step, where it arrives at its target while the finger
+// may already be on its way to the next coin; the two pushes do not overlap in time.
+TEST(GuessPushers, ALonePusherPushesItsCoinsOneAfterTheOther) {
+  const Scene scene = load_scene(std::string(DISCO_SOURCE_DIR) + "/configs/scenarios/push_two_coins.yaml");
+  StartSpec start;
+  start.guess = GuessKind::kStraight;
+  const Paths paths = guess_paths(scene, start);
+  const int N = scene.steps;
+  std::vector<std::pair<int, int>> pushed;  // per coin: its first and last moving step
+  for (int o = 1; o <= 2; ++o) {
+    const Robot& coin = scene.robots[o];
+    int first = -1, last = -1;
+    for (int t = 1; t <= N; ++t) {
+      const bool moved = std::hypot(paths[o][t][kX] - paths[o][t - 1][kX], paths[o][t][kY] - paths[o][t - 1][kY]) > 1e-12;
+      if (!moved) continue;
+      if (first < 0) first = t;
+      last = t;
+    }
+    ASSERT_GT(first, 0) << coin.name << " is pushed";
+    for (int t = first; t < last; ++t)
+      EXPECT_NEAR(std::hypot(paths[0][t][kX] - paths[o][t][kX], paths[0][t][kY] - paths[o][t][kY]),
+                  scene.robots[0].radius + coin.radius, 1e-9)
+          << coin.name << " moves at step " << t << " with the finger touching it";
+    for (int t = last; t <= N; ++t)
+      EXPECT_EQ(paths[o][t], paths[o][N]) << coin.name << " rests from step " << last;
+    EXPECT_EQ(paths[o][first - 1][kX], coin.start[kX]);
+    EXPECT_EQ(paths[o][first - 1][kY], coin.start[kY]);
+    for (int c : {kX, kY}) {
+      EXPECT_GE(paths[o][N][c], coin.target.lower[c]);
+      EXPECT_LE(paths[o][N][c], coin.target.upper[c]);
+    }
+    pushed.push_back({first, last});
+  }
+  EXPECT_TRUE(pushed[0].second < pushed[1].first || pushed[1].second < pushed[0].first)
+      << "one coin after the other: steps " << pushed[0].first << "-" << pushed[0].second << " and "
+      << pushed[1].first << "-" << pushed[1].second;
+}
+
+}  // namespace
+}  // namespace disco

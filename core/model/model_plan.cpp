@@ -145,14 +145,17 @@ ModelPlan plan_model(const Scene& s, bool adaptive, double horizon_max) {
       for (int t = 1; t <= N; ++t) forward[i][t] = forward[i][t - 1] + h * u[i][t];
       for (int t = N - 1; t >= 0; --t) backward[i][t] = backward[i][t + 1] + h * u[i][t + 1];
     }
-    auto regions = [&](int i, int t) {
+    // The region of robot i's centre at state t: within r_f(t_f) of its start and r_b(t_b)
+    // of its target box (t_f = t_b = t; a step's straight move from t - 1 to t lies in the
+    // region with t_f = t, t_b = t - 1, both sets being convex and r_f growing, r_b shrinking).
+    auto regions = [&](int i, int t_f, int t_b) {
       const Robot& rb = s.robots[i];
       const std::array<double, 2> start{rb.start[kX], rb.start[kY]};
       return std::array<RoundedBox, 2>{
-          RoundedBox{start, start, forward[i][t]},
+          RoundedBox{start, start, forward[i][t_f]},
           RoundedBox{{rb.target.lower[kX], rb.target.lower[kY]},
                      {rb.target.upper[kX], rb.target.upper[kY]},
-                     backward[i][t]}};
+                     backward[i][t_b]}};
     };
     for (int p = 0; p < np; ++p) {
       const Pair& pr = s.pairs[p];
@@ -160,7 +163,7 @@ ModelPlan plan_model(const Scene& s, bool adaptive, double horizon_max) {
       const double reach = clearance(s, pr) + kReachMargin * R;
       int first = N + 1, last = 0;
       for (int t = 1; t <= N; ++t) {
-        const auto a = regions(pr.i, t), b = regions(pr.j, t);
+        const auto a = regions(pr.i, t, t), b = regions(pr.j, t, t);
         double apart = -kInf;
         for (const auto& ra : a)
           for (const auto& rb : b) apart = std::max(apart, distance_bound(ra, rb));
@@ -170,7 +173,10 @@ ModelPlan plan_model(const Scene& s, bool adaptive, double horizon_max) {
       plan.pairs[p].last = last;
     }
     // Obstacle pairs: the obstacle's place up to state t is within the box of its
-    // segment (a wall) or of its way from tau = 0 to t h (a disk), rounded by R_o.
+    // segment (a wall) or of its way from tau = 0 to t h (a disk), rounded by R_o. A wall
+    // pair keeps state t also where the move from t - 1 to t or from t to t + 1 comes
+    // within reach (its region from t_f = t + 1 and t_b = t - 1 holds both), so every such
+    // step carries the swept row (core/model/swept.h).
     for (int q = 0; q < static_cast<int>(s.obstacle_pairs.size()); ++q) {
       const Pair& pr = s.obstacle_pairs[q];
       const Obstacle& ob = s.obstacles[pr.j];
@@ -184,7 +190,9 @@ ModelPlan plan_model(const Scene& s, bool adaptive, double horizon_max) {
                            {std::max(ob.from[0], end[0]), std::max(ob.from[1], end[1])},
                            ob.radius};
         double apart = -kInf;
-        for (const auto& ra : regions(pr.i, t)) apart = std::max(apart, distance_bound(ra, o));
+        const bool wall = ob.shape == ObstacleShape::kWall;
+        for (const auto& ra : regions(pr.i, wall ? std::min(t + 1, N) : t, wall ? t - 1 : t))
+          apart = std::max(apart, distance_bound(ra, o));
         if (!(apart > reach)) first = std::min(first, t), last = t;
       }
       plan.pairs[np + q].first = first;

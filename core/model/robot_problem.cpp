@@ -15,6 +15,7 @@
 #include "core/model/nonpenetration.h"
 #include "core/model/objective.h"
 #include "core/model/obstacles.h"
+#include "core/model/swept.h"
 #include "core/util/check.h"
 #include "core/util/numbers.h"
 
@@ -29,7 +30,8 @@ constexpr double kHorizonMin = 1e-3;
 const std::vector<Family>& all_families() {
   static const std::vector<Family> all = {
       Family::kKinematics, Family::kDynamics,        Family::kFloorFriction, Family::kGap,
-      Family::kNonpenetration, Family::kContactFriction, Family::kAvoidance, Family::kBounds};
+      Family::kNonpenetration, Family::kContactFriction, Family::kAvoidance, Family::kSweptClearance,
+      Family::kBounds};
   return all;
 }
 
@@ -57,6 +59,7 @@ void RobotProblem::build() {
   if (has(Family::kNonpenetration)) add_nonpenetration(L, program_);
   if (has(Family::kContactFriction)) add_contact_friction(L, program_);
   if (has(Family::kAvoidance)) add_avoidance(L, program_);
+  if (has(Family::kSweptClearance)) add_swept_clearance(L, program_);
   if (has(Family::kBounds)) add_bounds(L, program_, kHorizonMin, std::max(kHorizonMin, T_max));
   add_objective(L, program_);
   objective_row_ = scene_.objective.kind == ObjectiveKind::kTime ? -1 : add_objective_row(L, program_);

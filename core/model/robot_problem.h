@@ -38,6 +38,7 @@ enum class Family {
   kNonpenetration,
   kContactFriction,
   kAvoidance,
+  kSweptClearance,
   kBounds,
 };
 const std::vector<Family>& all_families();
