@@ -313,6 +313,10 @@ void follow_objects(const Scene& scene, Paths& paths) {
 
 // The point at the share w in [0, 1] of the length of `way`.
 std::array<double, 2> point_along(const Way& way, double w) {
+  // A straight way: the straight move's own arithmetic, so obstacle-free guesses stay the
+  // same to the last bit (a roundoff change moved paper B1 start 0 to another optimum).
+  if (way.size() == 2)
+    return {way[0][0] + w * (way[1][0] - way[0][0]), way[0][1] + w * (way[1][1] - way[0][1])};
   double total = 0.0;
   for (std::size_t k = 1; k < way.size(); ++k)
     total += std::hypot(way[k][0] - way[k - 1][0], way[k][1] - way[k - 1][1]);
