@@ -94,7 +94,7 @@ Vector complete_paths(const RobotProblem& problem, const Paths& paths, double le
   }
   // Gaps from the positions (a wall's nearest point first); contact multipliers zero but
   // gamma = |v_T|.
-  complete_wall_projections(layout, z);
+  complete_obstacle_unknowns(layout, z);
   for (int p = 0; p < layout.num_pairs(); ++p) {
     for (int t = 1; t <= N; ++t)
       if (layout.has_gap(p, t)) z[layout.gap_index(p, t)] = centre_gap(layout, z, p, t);
@@ -369,8 +369,7 @@ Way way_around_obstacles(const Scene& scene, int robot) {
   std::vector<std::pair<const Obstacle*, double>> fixed;
   for (const Pair& p : scene.obstacle_pairs) {
     const Obstacle& ob = scene.obstacles[p.j];
-    const bool moves = ob.shape == ObstacleShape::kDisk && (ob.velocity[0] != 0.0 || ob.velocity[1] != 0.0);
-    if (p.i == robot && !moves) fixed.emplace_back(&ob, obstacle_clearance(scene, p));
+    if (p.i == robot && !ob.moves()) fixed.emplace_back(&ob, obstacle_clearance(scene, p));
   }
   auto clear = [&](const std::array<double, 2>& a, const std::array<double, 2>& b) {
     for (const auto& [ob, c] : fixed)

@@ -554,6 +554,30 @@ def plots():
     check(ax.get_xlim()[1] >= far + 0.1, f"snapshots: the region holds the wall ({ax.get_xlim()})")
     legend = [t.get_text() for t in ax.get_legend().get_texts()]
     check("obstacle" in legend, f"snapshots: the legend names obstacles ({legend})")
+    # A sentry on waypoints: drawn on its track (its centres at the states, written by disco),
+    # straight between states, and the drawn region holds the whole track.
+    h, n_t = raw["h"], raw["N_t"]
+    track_x = [far + 2.0 + 0.5 * k for k in range(n_t + 1)]
+    path_doc = copy.deepcopy(obs_doc)
+    path_doc["obstacles"].append(
+        {"name": "s", "shape": "disk", "radius": 0.2, "centre": [track_x[0], 2.0],
+         "path": [{"t": 0.0, "x": track_x[0], "y": 2.0}, {"t": h * n_t, "x": track_x[-1], "y": 2.0}],
+         "x": track_x, "y": [2.0] * (n_t + 1)})
+    with open(obs_path, "w") as f:
+        json.dump(path_doc, f)
+    psol = load(obs_path, full=True)
+    fig = snapshots.overlay(psol, times, 0.01, (1200, 600), "")
+    ax = fig.axes[0]
+    sentries = sorted(round(p.center[0], 9) for p in ax.patches
+                      if isinstance(p, Circle) and abs(p.get_radius() - 0.2) < 1e-12)
+    check(sentries == sorted(round(far + 2.0 + 0.5 * t / h, 9) for t in times),
+          f"snapshots: the sentry on its track at each snapshot's time ({sentries})")
+    check(ax.get_xlim()[1] >= track_x[-1] + 0.2, f"snapshots: the region holds the track ({ax.get_xlim()})")
+    del path_doc["obstacles"][2]["path"]
+    refused = refusal(obs_path, path_doc)
+    check("missing key 'obstacles[2].velocity'" in refused,
+          f"load: a disk with neither velocity nor path is refused ({refused!r})")
+
     obs_doc["obstacles"][0]["shape"] = "box"
     refused = refusal(obs_path, obs_doc)
     check("'obstacles[0].shape' is \"box\"" in refused, f"load: an unknown shape is refused ({refused!r})")

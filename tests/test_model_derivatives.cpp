@@ -112,7 +112,7 @@ Scene objects_scene() {
 }
 
 // A robot and an object among obstacles: a wall and a post in contact (with friction), a
-// moving post and a second wall in avoid mode.
+// moving post, a second wall and a post that follows waypoints in avoid mode.
 Scene obstacles_scene() {
   Robot a = moving(make_robot("a", 0.5, 1.0, 0.2, 5.0, -1.5, 0.0, 6), 0.0, 0.5, 0.0, 0.1);
   Robot b = moving(make_robot("b", 0.4, 0.8, 0.3, 0.0, 1.5, 0.2, 5), 0.0, -0.3, 0.1, 0.2);
@@ -126,6 +126,9 @@ Scene obstacles_scene() {
   model_test::add_obstacle(s, model_test::post("runner", {-3.0, 3.0}, 0.2, {1.0, -0.5}),
                            PairMode::kAvoid, 0.0, 0.05);
   model_test::add_obstacle(s, model_test::wall("side_wall", {2.5, -1.0}, {2.5, 2.0}), PairMode::kAvoid);
+  model_test::add_obstacle(
+      s, model_test::sentry("sentry", 0.25, {{0.0, {0.5, -2.0}}, {0.3, {1.0, -1.0}}, {0.6, {0.2, 0.5}}, {1.0, {1.5, 1.0}}}),
+      PairMode::kAvoid, 0.0, 0.05);
   return s;
 }
 
@@ -272,10 +275,28 @@ Vector wall_end_point(const RobotProblem& rp, unsigned seed) {
       put(z, L.state_index(i, t, kY), end[1] + d * std::sin(out));
     }
   }
-  complete_wall_projections(L, z);
+  complete_obstacle_unknowns(L, z);
   for (int p = 0; p < L.num_pairs(); ++p)
     for (int t = 1; t <= L.steps(); ++t)
       if (L.has_gap(p, t)) put(z, L.gap_index(p, t), centre_gap(L, z, p, t));
+  return z;
+}
+
+// A random point whose T_f puts state 2 just past an inner waypoint of the first path
+// obstacle, where two pieces of the spline meet, with its centres q^t on the path. Just
+// past: 1e-4 in model time, beyond the checker's finite-difference step (1e-6 relative). The
+// spline is C^2 at a waypoint but its third derivative jumps there, so a central difference
+// of the Hessian that straddles it is off by O(step) (tests/test_obstacle_path.cpp checks
+// the C^2 joint itself).
+Vector path_knot_point(const RobotProblem& rp, unsigned seed) {
+  Vector z = random_point(rp, seed);
+  const Layout& L = rp.layout();
+  for (const Obstacle& ob : L.model_scene().obstacles) {
+    if (ob.path.size() < 3) continue;
+    z[L.horizon_index()] = (ob.path[1].t + 1e-4) * L.steps() / 2.0;
+    complete_obstacle_unknowns(L, z);
+    break;
+  }
   return z;
 }
 
@@ -326,6 +347,12 @@ void check_all_points(const RobotProblem& rp, unsigned base_seed) {
     SCOPED_TRACE("at a wall's ends");
     expect_exact_derivatives(rp, wall_end_point(rp, base_seed + 13), base_seed + 13);
   }
+  for (const Obstacle& ob : rp.layout().model_scene().obstacles)
+    if (ob.path.size() >= 3) {
+      SCOPED_TRACE("just past a path's waypoint");
+      expect_exact_derivatives(rp, path_knot_point(rp, base_seed + 21), base_seed + 21);
+      break;
+    }
 }
 
 // ------------------------------------------------------------- tests ---

@@ -12,6 +12,7 @@
 
 #include "core/config/settings.h"
 #include "core/model/gap.h"
+#include "core/model/obstacle_path.h"
 #include "core/model/obstacles.h"
 #include "core/model/robot_problem.h"
 #include "core/model/scene_yaml.h"
@@ -122,7 +123,7 @@ TEST(WallProjection, TheExactNearestPointSatisfiesItsRowsInsideAndPastTheEnds) {
     z[L.state_index(0, t, kX)] = centres[t - 1][0] / R;
     z[L.state_index(0, t, kY)] = centres[t - 1][1] / R;
   }
-  complete_wall_projections(L, z);
+  complete_obstacle_unknowns(L, z);
   for (int t = 1; t <= 3; ++t) z[L.gap_index(0, t)] = centre_gap(L, z, 0, t);
   EXPECT_DOUBLE_EQ(z[L.wall_parameter_index(0, 2)], 0.0) << "past the first end";
   EXPECT_DOUBLE_EQ(z[L.wall_parameter_index(0, 3)], 1.0) << "past the second end";
@@ -162,8 +163,16 @@ TEST(ObstaclePlan, OnlyObstaclesWithinReachGetAWindow) {
 
 // The solution file's disk at state k against obstacle `ob` at time t_k: the centre's
 // distance to the obstacle's core, computed here from the file's numbers.
+// A disk on waypoints is where its path (core/model/obstacle_path.h, tested on its own in
+// tests/test_obstacle_path.cpp) through the file's waypoints puts it.
 double core_distance(const nlohmann::json& rob, const nlohmann::json& ob, int k, double t) {
   const double x = rob["x"][k], y = rob["y"][k];
+  if (ob["shape"] == "disk" && ob.contains("path")) {
+    std::vector<Waypoint> path;
+    for (const auto& w : ob["path"]) path.push_back({w["t"], {w["x"], w["y"]}});
+    const auto c = path_point(path, t);
+    return std::hypot(x - c[0], y - c[1]);
+  }
   if (ob["shape"] == "disk") {
     const double cx = double(ob["centre"][0]) + t * double(ob["velocity"][0]);
     const double cy = double(ob["centre"][1]) + t * double(ob["velocity"][1]);
@@ -309,6 +318,28 @@ TEST(ObstacleSolve, ARobotCrossingAMovingObstacleNeverTouchesIt) {
   const auto& r = sol["robots"][0];
   EXPECT_LT(double(r["x"][0]), 0.0);
   EXPECT_GT(double(r["x"].back()), 0.0) << "it crossed the obstacle's path";
+}
+
+// configs/scenarios/moving_path.yaml: a sentry patrols x = 0 between y = -1.5 and 1.5 on
+// waypoints and crosses the robot's line when the robot alone would. The file's centres of
+// the sentry at the states are its path's, and the robot keeps clear of it.
+TEST(ObstacleSolve, ARobotCrossingASentryOnWaypointsNeverTouchesIt) {
+  const nlohmann::json sol = solve_file("moving_path.yaml");
+  ASSERT_FALSE(sol.is_null());
+  const auto& ob = sol["obstacles"][0];
+  ASSERT_EQ(ob["path"].size(), 5u);
+  std::vector<Waypoint> path;
+  for (const auto& w : ob["path"]) path.push_back({w["t"], {w["x"], w["y"]}});
+  const double h = sol["h"];
+  for (std::size_t k = 0; k < ob["x"].size(); ++k) {
+    EXPECT_NEAR(double(ob["x"][k]), path_point(path, k * h)[0], 1e-12) << k;
+    EXPECT_NEAR(double(ob["y"][k]), path_point(path, k * h)[1], 1e-12) << k;
+  }
+  expect_clear(sol);
+  EXPECT_GT(double(sol["T_f"]), double(sol["lower_bound"]) * 1.02);
+  const auto& r = sol["robots"][0];
+  EXPECT_LT(double(r["x"][0]), 0.0);
+  EXPECT_GT(double(r["x"].back()), 0.0) << "it crossed the sentry's way";
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <memory>
 #include <random>
 #include <set>
 #include <stdexcept>
@@ -140,6 +141,62 @@ TEST(PolynomialProgram, RepeatedVariablesHaveExactDerivatives) {
   EXPECT_NEAR(g[1], z[2], 1e-14);
   EXPECT_NEAR(g[2], z[1], 1e-14);
   EXPECT_NEAR(g[3], -2 * (z[0] - z[3]), 1e-14);
+}
+
+// sin(a x), for function terms.
+class Sine : public UnivariateFunction {
+ public:
+  std::array<double, 3> eval(double x) const override { return {std::sin(x), std::cos(x), -std::sin(x)}; }
+};
+
+// Function terms coef * g(a z_k) (g = sin here): values and derivatives by hand, merged with
+// monomials on the same entries, in a row, the objective, and a row with nothing else; then
+// every derivative against finite differences.
+TEST(PolynomialProgram, FunctionTermsHaveExactDerivatives) {
+  const auto g = std::make_shared<const Sine>();
+  PolynomialProgram p;
+  for (int k = 0; k < 3; ++k) p.add_variable(-10, 10);
+  const int r0 = p.add_row(-1, 1), r1 = p.add_row(-1, 1);
+  p.add(r0, 1.0, X0, X1);              // x0 x1
+  p.add_function(r0, 2.0, g, 0, 0.5);  // + 2 sin(x0 / 2)
+  p.add_function(r0, -1.0, g, 1);      // - sin(x1)
+  p.add_function(r1, 3.0, g, 2, -2.0);  // 3 sin(-2 x2)
+  p.add(PolynomialProgram::kObjective, 1.0, X2, X2);  // x2^2
+  p.add_function(PolynomialProgram::kObjective, 1.0, g, 2);  // + sin(x2)
+  p.finalize();
+  EXPECT_EQ(p.num_function_terms(), 4);
+  Vector z(3);
+  z << 0.7, -1.3, 0.4;
+  const double x0 = z[0], x1 = z[1], x2 = z[2];
+  Vector c(2);
+  ASSERT_TRUE(p.constraints(z, c));
+  EXPECT_NEAR(c[0], x0 * x1 + 2 * std::sin(x0 / 2) - std::sin(x1), 1e-15);
+  EXPECT_NEAR(c[1], 3 * std::sin(-2 * x2), 1e-15);
+  double f = 0;
+  ASSERT_TRUE(p.objective(z, f));
+  EXPECT_NEAR(f, x2 * x2 + std::sin(x2), 1e-15);
+  Vector gr(3);
+  ASSERT_TRUE(p.gradient(z, gr));
+  EXPECT_NEAR(gr[2], 2 * x2 + std::cos(x2), 1e-15);
+  Vector jv(p.jacobian_pattern().size());
+  ASSERT_TRUE(p.jacobian(z, jv));
+  std::map<std::pair<int, int>, double> J;
+  for (int e = 0; e < jv.size(); ++e) J[{p.jacobian_pattern().rows[e], p.jacobian_pattern().cols[e]}] = jv[e];
+  EXPECT_EQ(J.size(), 3u) << "one entry per (row, variable), monomials and functions merged";
+  EXPECT_NEAR((J[{0, 0}]), x1 + std::cos(x0 / 2), 1e-15);
+  EXPECT_NEAR((J[{0, 1}]), x0 - std::cos(x1), 1e-15);
+  EXPECT_NEAR((J[{1, 2}]), -6 * std::cos(-2 * x2), 1e-15);
+  Vector lambda(2);
+  lambda << 0.5, -2.0;
+  Vector hv(p.hessian_pattern().size());
+  ASSERT_TRUE(p.hessian(z, 1.5, lambda, hv));
+  std::map<std::pair<int, int>, double> H;
+  for (int e = 0; e < hv.size(); ++e) H[{p.hessian_pattern().rows[e], p.hessian_pattern().cols[e]}] = hv[e];
+  EXPECT_NEAR((H[{0, 0}]), 0.5 * (-0.5 * std::sin(x0 / 2)), 1e-15);
+  EXPECT_NEAR((H[{1, 0}]), 0.5, 1e-15);
+  EXPECT_NEAR((H[{1, 1}]), 0.5 * std::sin(x1), 1e-15);
+  EXPECT_NEAR((H[{2, 2}]), -2.0 * (-12 * std::sin(-2 * x2)) + 1.5 * (2 - std::sin(x2)), 1e-14);
+  test_support::expect_exact_derivatives(check_derivatives(p, z, 1.5, lambda), 1e-6);
 }
 
 TEST(PolynomialProgram, CancelledMonomialsLeaveNoStructure) {

@@ -105,6 +105,16 @@ inline Obstacle post(const std::string& name, std::array<double, 2> centre, doub
   return o;
 }
 
+// A disk obstacle that follows `path` (core/model/obstacle_path.h).
+inline Obstacle sentry(const std::string& name, double radius, std::vector<Waypoint> path) {
+  Obstacle o;
+  o.name = name;
+  o.from = o.to = path.front().p;
+  o.radius = radius;
+  o.path = std::move(path);
+  return o;
+}
+
 // Direction d_k of the floor-friction polygon (core/model/floor_friction.h).
 inline std::array<double, 2> edge_direction(int k, int K) {
   const double a = 2.0 * std::numbers::pi * k / K;

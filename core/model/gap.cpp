@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 
+#include "core/model/obstacle_path.h"
 #include "core/model/obstacles.h"
 
 namespace disco {
@@ -16,13 +17,15 @@ void add_gap(Layout& L, PolynomialProgram& P) {
     P.add(r, -1.0, ny, ny);
   });
   add_wall_projection(L, P);  // a wall's nearest point, which its pairs' N uses
+  add_obstacle_path(L, P);    // a path obstacle's centre, likewise
 }
 
 double centre_gap(const Layout& L, const ConstVectorRef& z, int pair, int t) {
-  if (L.is_wall_pair(pair)) {  // the nearest point itself, not the unknown s
+  if (L.with_obstacle(pair)) {  // the obstacle itself, not the unknowns s or q
     const int i = L.pair(pair).i;
     const std::array<double, 2> c{L.state(i, t, kX).value(z), L.state(i, t, kY).value(z)};
-    return obstacle_distance(L.obstacle(pair), c, 0.0) - L.radius_sum(pair);
+    const double tau = t * L.horizon().value(z) / L.steps();
+    return obstacle_distance(L.obstacle(pair), c, tau) - L.radius_sum(pair);
   }
   return std::hypot(L.normal(pair, t, 0).value(z), L.normal(pair, t, 1).value(z)) - L.radius_sum(pair);
 }

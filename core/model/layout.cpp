@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/model/obstacle_path.h"
 #include "core/model/obstacles.h"
 #include "core/util/check.h"
 #include "core/util/numbers.h"
@@ -34,7 +35,7 @@ Layout::Layout(const Scene& s, const ModelPlan& plan, PolynomialProgram& P) : sc
     auto& v = pairs_[p];
     v.friction = w.friction;
     v.gap.assign(N + 1, -1);
-    for (auto* index : {&v.s, &v.low, &v.high}) index->assign(N + 1, -1);
+    for (auto* index : {&v.s, &v.low, &v.high, &v.q[0], &v.q[1]}) index->assign(N + 1, -1);
     for (auto* index : {&v.cn, &v.a1, &v.a2, &v.gamma}) index->assign(N, -1);
     if (w.empty()) continue;
     const bool contact = pair(p).mode == PairMode::kContact;
@@ -75,6 +76,8 @@ Layout::Layout(const Scene& s, const ModelPlan& plan, PolynomialProgram& P) : sc
       if (!gap_at[p][t + 1]) continue;
       auto& v = pairs_[p];
       v.gap[t + 1] = P.add_variable(pair(p).mode == PairMode::kContact ? 0.0 : -kInf, kInf);
+      if (follows_path(p))
+        for (int a = 0; a < 2; ++a) v.q[a][t + 1] = P.add_variable(-kInf, kInf);
       if (!is_wall_pair(p)) continue;
       v.s[t + 1] = P.add_variable(0.0, 1.0, 0.5);
       v.low[t + 1] = P.add_variable(0.0, kInf);
@@ -154,6 +157,11 @@ Affine Layout::other_state(int p, int t, int c) const {
   const int a = c == kX || c == kVx ? 0 : 1;
   if (c == kVx || c == kVy) return Affine(ob.velocity[a]);
   if (ob.shape == ObstacleShape::kWall) return Affine(ob.from[a]) + (ob.to[a] - ob.from[a]) * wall_parameter(p, t);
+  if (follows_path(p)) {
+    if (t == 0) return Affine(path_point(ob.path, 0.0)[a]);
+    DISCO_CHECK(pairs_[p].q[a][t] >= 0, "a path obstacle's centre outside the pair's window");
+    return Affine::variable(pairs_[p].q[a][t]);
+  }
   // A disk at from + tau v, tau = t h = t T_f / N: affine in T_f.
   Affine centre(ob.from[a]);
   if (ob.velocity[a] != 0.0 && t > 0) centre += Affine::variable(t_f_, ob.velocity[a] * t / scene_.steps);

@@ -15,12 +15,14 @@
 //                                  for the intervals ending in the window
 //   per wall pair, state t:        the closest point's parameter s and its two
 //                                  projection multipliers (core/model/obstacles.h)
+//   per pair with an obstacle that follows waypoints, state t: its centre q^t
+//                                  (core/model/obstacle_path.h)
 //
 // Pairs. A pair index p runs over Scene::pairs (two disks) and then over
 // Scene::obstacle_pairs (a disk and an obstacle): pair(p) is either. Member i is
 // always a disk; member j is a disk or an obstacle, whose "state" other_state()
-// gives: its centre (a wall: its point nearest to disk i, a + s d), its constant
-// velocity, and phi = omega = 0. Nothing pushes an obstacle: its member has no
+// gives: its centre (a wall: its point nearest to disk i, a + s d; a path obstacle: the
+// unknown q^t), its constant velocity, and phi = omega = 0. Nothing pushes an obstacle: its member has no
 // momentum rows (other_disk() is -1), so the families add impulses to i only.
 //
 // What exists is decided by a ModelPlan (core/model/model_plan.h): the full
@@ -92,6 +94,10 @@ class Layout {
   int wall_low_index(int pair, int t) const { return t == 0 ? -1 : pairs_[pair].low[t]; }
   int wall_high_index(int pair, int t) const { return t == 0 ? -1 : pairs_[pair].high[t]; }
   Affine wall_parameter(int pair, int t) const;  // s: the constant projection at t = 0
+  // A pair whose obstacle follows waypoints: the unknown centre q^t (axis 0: x, 1: y) at a
+  // state t >= 1 in its window (-1 otherwise).
+  bool follows_path(int pair) const { return with_obstacle(pair) && !obstacle(pair).path.empty(); }
+  int path_point_index(int pair, int t, int axis) const { return t == 0 ? -1 : pairs_[pair].q[axis][t]; }
 
   bool has_gap(int pair, int t) const;             // t = 0, or rho^t is an unknown
   Affine gap(int pair, int t) const;               // rho; needs has_gap
@@ -172,6 +178,7 @@ class Layout {
     std::vector<int> gap;                  // [state t], -1: none (t = 0: the constant)
     std::vector<int> cn, a1, a2, gamma;    // [interval t], -1: none
     std::vector<int> s, low, high;         // [state t], wall pairs only, -1: none
+    std::array<std::vector<int>, 2> q;     // [axis][state t], path obstacle pairs only
   };
   Scene scene_;
   int t_f_ = -1;

@@ -173,22 +173,18 @@ ModelPlan plan_model(const Scene& s, bool adaptive, double horizon_max) {
       plan.pairs[p].last = last;
     }
     // Obstacle pairs: the obstacle's place up to state t is within the box of its
-    // segment (a wall) or of its way from tau = 0 to t h (a disk), rounded by R_o. A wall
-    // pair keeps state t also where the move from t - 1 to t or from t to t + 1 comes
-    // within reach (its region from t_f = t + 1 and t_b = t - 1 holds both), so every such
-    // step carries the swept row (core/model/swept.h).
+    // segment (a wall) or of its way from tau = 0 to t h (a disk; obstacle_box), rounded
+    // by R_o. A wall pair keeps state t also where the move from t - 1 to t or from t to
+    // t + 1 comes within reach (its region from t_f = t + 1 and t_b = t - 1 holds both), so
+    // every such step carries the swept row (core/model/swept.h).
     for (int q = 0; q < static_cast<int>(s.obstacle_pairs.size()); ++q) {
       const Pair& pr = s.obstacle_pairs[q];
       const Obstacle& ob = s.obstacles[pr.j];
       const double reach = obstacle_clearance(s, pr) + kReachMargin * (s.robots[pr.i].radius + ob.radius);
       int first = N + 1, last = 0;
       for (int t = 1; t <= N; ++t) {
-        std::array<double, 2> end = ob.to;
-        if (ob.shape == ObstacleShape::kDisk)
-          end = {ob.from[0] + t * h * ob.velocity[0], ob.from[1] + t * h * ob.velocity[1]};
-        const RoundedBox o{{std::min(ob.from[0], end[0]), std::min(ob.from[1], end[1])},
-                           {std::max(ob.from[0], end[0]), std::max(ob.from[1], end[1])},
-                           ob.radius};
+        const auto box = obstacle_box(ob, 0.0, t * h);
+        const RoundedBox o{box[0], box[1], ob.radius};
         double apart = -kInf;
         const bool wall = ob.shape == ObstacleShape::kWall;
         for (const auto& ra : regions(pr.i, wall ? std::min(t + 1, N) : t, wall ? t - 1 : t))

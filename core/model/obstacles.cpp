@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/model/obstacle_path.h"
 #include "core/util/numbers.h"
 
 namespace disco {
@@ -32,9 +33,27 @@ double wall_projection(const Obstacle& ob, const std::array<double, 2>& p) {
   return std::clamp(along / (dx * dx + dy * dy), 0.0, 1.0);
 }
 
+std::array<double, 2> obstacle_centre(const Obstacle& ob, double tau) {
+  if (!ob.path.empty()) return path_point(ob.path, tau);
+  return {ob.from[0] + tau * ob.velocity[0], ob.from[1] + tau * ob.velocity[1]};
+}
+
+std::array<std::array<double, 2>, 2> obstacle_box(const Obstacle& ob, double tau0, double tau1) {
+  std::array<double, 2> a = ob.from, b = ob.to;
+  if (ob.shape == ObstacleShape::kDisk && !ob.path.empty()) {
+    std::array<std::array<double, 2>, 2> box;
+    for (int axis = 0; axis < 2; ++axis) {
+      const auto r = PathCoordinate(ob.path, axis).range(tau0, tau1);
+      box[0][axis] = r[0], box[1][axis] = r[1];
+    }
+    return box;
+  }
+  if (ob.shape == ObstacleShape::kDisk) a = obstacle_centre(ob, tau0), b = obstacle_centre(ob, tau1);
+  return {{{std::min(a[0], b[0]), std::min(a[1], b[1])}, {std::max(a[0], b[0]), std::max(a[1], b[1])}}};
+}
+
 std::array<double, 2> obstacle_point(const Obstacle& ob, const std::array<double, 2>& p, double tau) {
-  if (ob.shape == ObstacleShape::kDisk)
-    return {ob.from[0] + tau * ob.velocity[0], ob.from[1] + tau * ob.velocity[1]};
+  if (ob.shape == ObstacleShape::kDisk) return obstacle_centre(ob, tau);
   const double s = wall_projection(ob, p);
   return {ob.from[0] + s * (ob.to[0] - ob.from[0]), ob.from[1] + s * (ob.to[1] - ob.from[1])};
 }
@@ -83,7 +102,8 @@ double swept_distance(const Obstacle& ob, const std::array<double, 2>& p0,
                    to_segment(ob.from, p0, p1), to_segment(ob.to, p0, p1)});
 }
 
-void complete_wall_projections(const Layout& L, VectorRef z) {
+void complete_obstacle_unknowns(const Layout& L, VectorRef z) {
+  complete_obstacle_paths(L, z);
   for (int p = 0; p < L.num_pairs(); ++p) {
     if (!L.is_wall_pair(p)) continue;
     const Obstacle& ob = L.obstacle(p);

@@ -11,7 +11,8 @@
 // with q^t the obstacle's point nearest to the disk's centre p^t and R_o its radius:
 //   disk  q^t = q^0 + t h v,  h = T_f / N: affine in the unknown T_f, so a moving disk
 //         (constant velocity v, the paper's "moving obstacles") keeps every row polynomial
-//         and its derivatives exact;
+//         and its derivatives exact; or, for a disk that follows waypoints, q^t unknowns
+//         defined by rows q^t = Q(t h) on a smooth path Q (core/model/obstacle_path.h);
 //   wall  q^t = a + s^t d,  d = b - a, R_o = half the thickness: a capsule.
 //
 // The nearest point of a wall. Its distance |p - a - s d| is not smooth in p where the
@@ -41,6 +42,11 @@ void add_wall_projection(Layout& L, PolynomialProgram& P);
 
 // s in [0, 1] of the point of wall `ob` nearest to `p` (any consistent units).
 double wall_projection(const Obstacle& ob, const std::array<double, 2>& p);
+// A disk obstacle's centre at time tau (a wall's first end).
+std::array<double, 2> obstacle_centre(const Obstacle& ob, double tau);
+// The box [lo, hi] (per axis) of the obstacle's core over times [tau0, tau1]: a wall's
+// segment, a disk's centres.
+std::array<std::array<double, 2>, 2> obstacle_box(const Obstacle& ob, double tau0, double tau1);
 // The obstacle's point nearest to `p` at time tau (a disk's centre, a wall's nearest point).
 std::array<double, 2> obstacle_point(const Obstacle& ob, const std::array<double, 2>& p, double tau);
 // |p - obstacle_point|: the disk's centre distance to the obstacle's centre or centre line.
@@ -52,14 +58,16 @@ double obstacle_clearance(const Scene& scene, const Pair& pair);
 // constraints: a disk that moves farther in one step than an obstacle is thick can jump
 // over it (a thin wall, few steps). swept_distance() measures what the rows do not: the
 // least distance from the obstacle's core to the disk's centre moving straight from p0 (at
-// time tau0) to p1 (at tau1), the obstacle moving on as well. The solution file reports it
+// time tau0) to p1 (at tau1), the obstacle moving on as well (straight between its places
+// at tau0 and tau1, for a path obstacle too). The solution file reports it
 // per step (obstacle_pairs[].swept_gap) and `disco solve` warns when it is below the
 // clearance.
 double swept_distance(const Obstacle& ob, const std::array<double, 2>& p0,
                       const std::array<double, 2>& p1, double tau0, double tau1);
 
 // Sets the projection unknowns (s, lambda_lo, lambda_hi) of every wall pair in z from the
-// disk centres in z: the exact projection and its multipliers (for guesses and transfers).
-void complete_wall_projections(const Layout& L, VectorRef z);
+// disk centres in z: the exact projection and its multipliers; and a path obstacle's
+// centres q^t from the T_f in z (for guesses and transfers).
+void complete_obstacle_unknowns(const Layout& L, VectorRef z);
 
 }  // namespace disco

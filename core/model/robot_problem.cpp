@@ -173,7 +173,7 @@ Vector RobotProblem::transfer(const Vector& z, const RobotProblem& to) const {
   }
   // A wall's nearest point from the centres (exact where A has none): before the gaps and
   // contact gammas, which use it through N.
-  complete_wall_projections(B, out);
+  complete_obstacle_unknowns(B, out);
   for (int p = 0; p < np; ++p) {
     for (int t = 1; t <= N; ++t) {
       if (!B.has_gap(p, t)) continue;

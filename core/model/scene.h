@@ -76,14 +76,23 @@ struct Pair {
 // by `radius` (half the wall's thickness, >= 0), i.e. a capsule. Robots and objects meet
 // it through Scene::obstacle_pairs (core/model/obstacles.h).
 enum class ObstacleShape { kDisk, kWall };
+// A place a moving disk obstacle passes at a given time (core/model/obstacle_path.h).
+struct Waypoint {
+  double t = 0;                        // [s] from the start, t = 0
+  std::array<double, 2> p{0.0, 0.0};  // [m]
+};
+
 struct Obstacle {
   std::string name;             // unique within the scene (robots, objects and obstacles)
   ObstacleShape shape = ObstacleShape::kDisk;
   std::array<double, 2> from{0.0, 0.0};      // a disk's centre at tau = 0; a wall's first end
   std::array<double, 2> to{0.0, 0.0};        // a wall's second end (unused for a disk)
   std::array<double, 2> velocity{0.0, 0.0};  // a disk's constant velocity [m/s]; 0 for a wall
+  // A disk that follows waypoints instead (>= 2, times increasing; velocity is then 0):
+  // the smooth path through them (core/model/obstacle_path.h).
+  std::vector<Waypoint> path;
   double radius = 0;            // disk: > 0; wall: half its thickness, >= 0 [m]
-  bool moves() const { return velocity[0] != 0.0 || velocity[1] != 0.0; }
+  bool moves() const { return velocity[0] != 0.0 || velocity[1] != 0.0 || !path.empty(); }
 };
 
 // Where a scene key was given, for messages made after the scene was read

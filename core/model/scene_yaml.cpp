@@ -43,7 +43,8 @@ const std::vector<std::string> kStateKeys(kStateNames.begin(), kStateNames.end()
 const std::vector<std::string> kPairsKeys = {"mode", "safe_distance", "mu", "overrides"};
 const std::vector<std::string> kPairOverrideKeys = {"robots", "mode", "safe_distance", "mu"};
 const std::vector<std::string> kObstacleKeys = {"name", "disk", "wall", "mode", "safe_distance", "mu"};
-const std::vector<std::string> kDiskObstacleKeys = {"x", "y", "radius", "vx", "vy"};
+const std::vector<std::string> kDiskObstacleKeys = {"x", "y", "radius", "vx", "vy", "path"};
+const std::vector<std::string> kWaypointKeys = {"t", "x", "y"};
 const std::vector<std::string> kWallKeys = {"from", "to", "thickness"};
 const std::vector<std::string> kObjectiveKeys = {"kind", "horizon", "energy_weight"};
 const std::vector<std::string> kObjectiveKinds = {"time", "energy", "time + energy"};
@@ -591,6 +592,28 @@ std::array<double, 2> read_point(const Doc& doc, const YAML::Node& n, const std:
   return {doc.number(n[0], item(path, 0)), doc.number(n[1], item(path, 1))};
 }
 
+// A disk obstacle's `path` at `path`: >= 2 waypoints {t, x, y}, t >= 0 and increasing.
+std::vector<Waypoint> read_path(const Doc& doc, const YAML::Node& n, const std::string& path) {
+  if (!n.IsSequence() || n.size() < 2)
+    doc.fail(n, path, "must be a sequence of at least two waypoints {t, x, y} (got " +
+                          (n.IsSequence() ? std::to_string(n.size()) : describe(n)) + ")");
+  std::vector<Waypoint> out;
+  for (std::size_t k = 0; k < n.size(); ++k) {
+    const std::string at = item(path, k);
+    const auto w = doc.mapping(n[k], at, kWaypointKeys, false);
+    for (const char* key : {"t", "x", "y"})
+      if (w.count(key) == 0) doc.fail(n[k], child(at, key), "is required but missing");
+    Waypoint p;
+    p.t = doc.non_negative(w.at("t"), child(at, "t"));
+    p.p = {doc.number(w.at("x"), child(at, "x")), doc.number(w.at("y"), child(at, "y"))};
+    if (!out.empty() && !(p.t > out.back().t))
+      doc.fail(w.at("t"), child(at, "t"),
+               "waypoint times must increase (got " + show(p.t) + " after " + show(out.back().t) + ")");
+    out.push_back(p);
+  }
+  return out;
+}
+
 // The `obstacles` sequence: Scene::obstacles, and Scene::obstacle_pairs from the `pairs`
 // defaults (`base`), each obstacle's own mode / safe_distance / mu, and the rule that a
 // pair with an object is a contact pair unless the obstacle names a mode.
@@ -620,14 +643,26 @@ void read_obstacles(const Doc& doc, const YAML::Node& seq, const Pair& base, Sce
     if (disk_it != fields.end()) {
       const std::string dpath = child(path, "disk");
       const auto d = doc.mapping(disk_it->second, dpath, kDiskObstacleKeys, false);
-      for (const char* key : {"x", "y", "radius"})
-        if (d.count(key) == 0) doc.fail(disk_it->second, child(dpath, key), "is required but missing");
       ob.shape = ObstacleShape::kDisk;
-      ob.from = {doc.number(d.at("x"), child(dpath, "x")), doc.number(d.at("y"), child(dpath, "y"))};
-      ob.to = ob.from;
+      if (d.count("radius") == 0) doc.fail(disk_it->second, child(dpath, "radius"), "is required but missing");
       ob.radius = doc.positive(d.at("radius"), child(dpath, "radius"));
-      if (const auto it = d.find("vx"); it != d.end()) ob.velocity[0] = doc.number(it->second, child(dpath, "vx"));
-      if (const auto it = d.find("vy"); it != d.end()) ob.velocity[1] = doc.number(it->second, child(dpath, "vy"));
+      if (const auto path_it = d.find("path"); path_it != d.end()) {
+        ob.path = read_path(doc, path_it->second, child(dpath, "path"));
+        for (const char* key : {"x", "y", "vx", "vy"})
+          if (d.count(key) != 0)
+            doc.fail(d.at(key), child(dpath, key),
+                     "a disk that follows a path starts at its first waypoint and moves along it: "
+                     "give either 'path' or 'x', 'y' (and 'vx', 'vy'), not both");
+        ob.from = ob.path.front().p;
+      } else {
+        for (const char* key : {"x", "y"})
+          if (d.count(key) == 0)
+            doc.fail(disk_it->second, child(dpath, key), "is required but missing (or give a 'path')");
+        ob.from = {doc.number(d.at("x"), child(dpath, "x")), doc.number(d.at("y"), child(dpath, "y"))};
+        if (const auto it = d.find("vx"); it != d.end()) ob.velocity[0] = doc.number(it->second, child(dpath, "vx"));
+        if (const auto it = d.find("vy"); it != d.end()) ob.velocity[1] = doc.number(it->second, child(dpath, "vy"));
+      }
+      ob.to = ob.from;
     } else {
       const std::string wpath = child(path, "wall");
       const auto w = doc.mapping(wall_it->second, wpath, kWallKeys, false);

@@ -187,8 +187,25 @@ json solution_json(const RobotProblem& problem, const Vector& z, const SolutionI
     const bool wall = ob.shape == ObstacleShape::kWall;
     json jo = {{"name", ob.name}, {"shape", wall ? "wall" : "disk"}, {"radius", ob.radius}};
     jo[wall ? "from" : "centre"] = {ob.from[0], ob.from[1]};
-    if (wall) jo["to"] = {ob.to[0], ob.to[1]};
-    else jo["velocity"] = {ob.velocity[0], ob.velocity[1]};
+    if (wall) {
+      jo["to"] = {ob.to[0], ob.to[1]};
+    } else if (ob.path.empty()) {
+      jo["velocity"] = {ob.velocity[0], ob.velocity[1]};
+    } else {
+      json path = json::array();
+      for (const Waypoint& w : ob.path) path.push_back({{"t", w.t}, {"x", w.p[0]}, {"y", w.p[1]}});
+      jo["path"] = path;
+    }
+    if (!wall && has) {  // where the disk is at each state t_k = k h
+      const double h = value(L.step()) * u.time;
+      std::vector<double> x(N + 1), y(N + 1);
+      for (int t = 0; t <= N; ++t) {
+        const auto c = obstacle_centre(ob, t * h);
+        x[t] = c[0], y[t] = c[1];
+      }
+      jo["x"] = x;
+      jo["y"] = y;
+    }
     obstacles.push_back(jo);
   }
   doc["obstacles"] = obstacles;

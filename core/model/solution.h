@@ -20,8 +20,9 @@
 //     tangential_force (N_t: i's force on j along that unit vector turned +90 degrees);
 //     the force on i is the opposite;
 //   obstacles[]: name, shape ("disk" or "wall"), radius (a wall: half its thickness); a disk:
-//     centre (at t = 0) and velocity (constant; its centre at t_k is centre + t_k velocity);
-//     a wall: from, to (its ends);
+//     centre (at t = 0), and velocity (constant: its centre at t_k is centre + t_k velocity)
+//     or path ([{t, x, y}], its waypoints: core/model/obstacle_path.h), and x, y (N_t + 1
+//     values: its centre at each t_k; absent without a solution); a wall: from, to (its ends);
 //   obstacle_pairs[]: i, j (indices into robots and obstacles), robot_i, obstacle, mode,
 //     safe_distance, mu, gap, normal_force, tangential_force: as pairs[], with the
 //     obstacle as member j (nothing moves it; its force on i is the opposite of j's);

@@ -49,6 +49,10 @@ Scene to_model_units(const Scene& scene, const Units& u) {
       ob.to[a] /= u.length;
       ob.velocity[a] /= u.velocity();
     }
+    for (auto& w : ob.path) {  // a clamped spline is the same curve in scaled time and space
+      w.t /= u.time;
+      for (double& c : w.p) c /= u.length;
+    }
     ob.radius /= u.length;
   }
   return s;

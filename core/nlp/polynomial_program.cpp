@@ -122,6 +122,17 @@ void PolynomialProgram::add_monomial(int r, double coef, int a, int b, int c) {
   (r == kObjective ? objective_ : building_[r]).push_back(m);
 }
 
+void PolynomialProgram::add_function(int r, double coef, std::shared_ptr<const UnivariateFunction> g,
+                                     int k, double scale) {
+  DISCO_CHECK(!finalized_, "add_function after finalize");
+  DISCO_CHECK(r == kObjective || (r >= 0 && r < num_constraints()), "row out of range");
+  DISCO_CHECK(k >= 0 && k < num_variables(), "variable out of range");
+  DISCO_CHECK(g != nullptr, "a function term without a function");
+  if (coef == 0.0) return;
+  fterm_.push_back({r, coef, g.get(), k, scale});
+  functions_.push_back(std::move(g));
+}
+
 void PolynomialProgram::add_pair(ComplementaritySide g, ComplementaritySide h) {
   DISCO_CHECK(!finalized_, "add_pair after finalize");
   pairs_.push_back({g, h});
@@ -136,6 +147,7 @@ struct Contribution {
   int row;
   double coef;
   int u, w;
+  int fn = -1;  // a function term's derivative instead of coef * z_u * z_w
 };
 using EntryMap = std::map<std::pair<int, int>, std::vector<Contribution>>;
 
@@ -146,6 +158,14 @@ void PolynomialProgram::finalize() {
   const int m = num_constraints();
   row_begin_.assign(1, 0);
   EntryMap jac, hess;
+  // Function terms by row (the objective, kObjective, is row m), in the order added.
+  for (auto& f : fterm_)
+    if (f.row == kObjective) f.row = m;
+  std::stable_sort(fterm_.begin(), fterm_.end(),
+                   [](const FunctionTerm& a, const FunctionTerm& b) { return a.row < b.row; });
+  fterm_begin_.assign(m + 2, 0);
+  for (const auto& f : fterm_) ++fterm_begin_[f.row + 1];
+  for (int r = 0; r <= m; ++r) fterm_begin_[r + 1] += fterm_begin_[r];
   for (int r = 0; r <= m; ++r) {
     auto& monos = r < m ? building_[r] : objective_;
     // Merge equal monomials of a row (same variables), keeping first-seen order.
@@ -185,6 +205,11 @@ void PolynomialProgram::finalize() {
         }
       }
     }
+    for (int f = fterm_begin_[r]; f < fterm_begin_[r + 1]; ++f) {
+      const int k = fterm_[f].var;
+      jac[{r, k}].push_back({r, 0.0, -1, -1, f});
+      hess[{k, k}].push_back({r, 0.0, -1, -1, f});
+    }
     row_begin_.push_back(static_cast<int>(mono_coef_.size()));
   }
   constant_.push_back(objective_constant_);
@@ -198,6 +223,7 @@ void PolynomialProgram::finalize() {
       out.coef.push_back(c.coef);
       out.u.push_back(c.u);
       out.w.push_back(c.w);
+      out.fn.push_back(c.fn);
     }
     out.begin.push_back(static_cast<int>(out.row.size()));
   };
@@ -234,7 +260,17 @@ double PolynomialProgram::row_value(int r, const ConstVectorRef& z) const {
     const int* var = &mono_v_[3 * i];
     v += mono_coef_[i] * factor(z, var[0]) * factor(z, var[1]) * factor(z, var[2]);
   }
+  for (int f = fterm_begin_[r]; f < fterm_begin_[r + 1]; ++f) {
+    const FunctionTerm& ft = fterm_[f];
+    v += ft.coef * ft.g->eval(ft.scale * z[ft.var])[0];
+  }
   return v;
+}
+
+double PolynomialProgram::function_derivative(int f, const ConstVectorRef& z, int order) const {
+  const FunctionTerm& ft = fterm_[f];
+  const double d = ft.g->eval(ft.scale * z[ft.var])[order];
+  return order == 1 ? ft.coef * ft.scale * d : ft.coef * ft.scale * ft.scale * d;
 }
 
 bool PolynomialProgram::do_objective(const ConstVectorRef& z, double& f) const {
@@ -250,7 +286,8 @@ bool PolynomialProgram::do_gradient(const ConstVectorRef& z, VectorRef grad) con
   for (size_t e = 0; e < grad_var_.size(); ++e) {
     double v = 0.0;
     for (int i = C.begin[e]; i < C.begin[e + 1]; ++i)
-      v += C.coef[i] * factor(z, C.u[i]) * factor(z, C.w[i]);
+      v += C.fn[i] >= 0 ? function_derivative(C.fn[i], z, 1)
+                        : C.coef[i] * factor(z, C.u[i]) * factor(z, C.w[i]);
     grad[grad_var_[e]] = v;
   }
   return true;
@@ -272,7 +309,8 @@ bool PolynomialProgram::do_jacobian(const ConstVectorRef& z, VectorRef values) c
   for (int e = 0; e < nnz; ++e) {
     double v = 0.0;
     for (int i = C.begin[e]; i < C.begin[e + 1]; ++i)
-      v += C.coef[i] * factor(z, C.u[i]) * factor(z, C.w[i]);
+      v += C.fn[i] >= 0 ? function_derivative(C.fn[i], z, 1)
+                        : C.coef[i] * factor(z, C.u[i]) * factor(z, C.w[i]);
     values[e] = v;
   }
   return true;
@@ -289,7 +327,7 @@ bool PolynomialProgram::do_hessian(const ConstVectorRef& z, double sigma,
     double v = 0.0;
     for (int i = C.begin[e]; i < C.begin[e + 1]; ++i) {
       const double weight = C.row[i] == m ? sigma : lambda[C.row[i]];
-      v += weight * C.coef[i] * factor(z, C.u[i]);
+      v += C.fn[i] >= 0 ? weight * function_derivative(C.fn[i], z, 2) : weight * C.coef[i] * factor(z, C.u[i]);
     }
     values[e] = v;
   }

@@ -1,7 +1,10 @@
-// disco — an MPCC whose objective and rows are polynomials of degree <= 3.
+// disco — an MPCC whose objective and rows are polynomials of degree <= 3, plus
+// given smooth functions of one variable.
 //
 // Every row is a sum of monomials  coef * z_a * z_b * z_c  (fewer factors
-// allowed, repeated variables allowed) plus a constant. The robot model is of
+// allowed, repeated variables allowed) plus a constant, plus terms
+// coef * g(a * z_k) with g a UnivariateFunction (below): a path given by the user
+// in time, evaluated at tau = (t / N) T_f (core/model/obstacle_path.h). The robot model is of
 // this form once the centre distance is a variable (see
 // core/model/nonpenetration.h), so one evaluator with exact derivatives serves
 // every constraint family, and each family only states its equation:
@@ -10,6 +13,10 @@
 //
 // where each factor is an Affine expression (variables with coefficients plus a
 // constant) and the product is expanded into monomials when added.
+//
+// A function term coef * g(a z_k) has the derivatives coef * a * g'(a z_k) and
+// coef * a^2 * g''(a z_k), at the (r, k) and (k, k) entries; they are as exact as g's
+// own (UnivariateFunction's contract).
 //
 // Derivatives (exact, per Nlp's contract). For a monomial m = c * prod_p z_{v_p}:
 //     dm/dz_k       = sum_{p : v_p = k} c * prod_{s != p} z_{v_s}
@@ -21,6 +28,8 @@
 // results are bitwise identical for any thread count.
 #pragma once
 
+#include <array>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -50,6 +59,15 @@ struct Affine {
   double value(const ConstVectorRef& z) const;
 };
 
+// A function of one real variable, twice continuously differentiable where a program
+// evaluates it, that returns its value, first and second derivative at x, exactly (to
+// roundoff). It must be safe to call from several threads at once.
+class UnivariateFunction {
+ public:
+  virtual ~UnivariateFunction() = default;
+  virtual std::array<double, 3> eval(double x) const = 0;
+};
+
 class PolynomialProgram : public Mpcc {
  public:
   static constexpr int kObjective = -1;  // row index that means "the objective"
@@ -63,6 +81,9 @@ class PolynomialProgram : public Mpcc {
   void add(int r, double coef, const Affine& a);
   void add(int r, double coef, const Affine& a, const Affine& b);
   void add(int r, double coef, const Affine& a, const Affine& b, const Affine& c);
+  // Adds coef * g(scale * z_k) to row r (or to the objective).
+  void add_function(int r, double coef, std::shared_ptr<const UnivariateFunction> g, int k,
+                    double scale = 1.0);
   void add_pair(ComplementaritySide g, ComplementaritySide h);
   // Compiles the derivative structure; no building afterwards.
   void finalize();
@@ -78,6 +99,7 @@ class PolynomialProgram : public Mpcc {
   const Vector& initial_point() const { return z0_; }
   Vector& initial_point() { return z0_; }
   int num_monomials() const { return static_cast<int>(mono_coef_.size()); }
+  int num_function_terms() const { return static_cast<int>(fterm_.size()); }
 
  private:
   struct Monomial {
@@ -95,6 +117,8 @@ class PolynomialProgram : public Mpcc {
                   VectorRef values) const override;
 
   double row_value(int r, const ConstVectorRef& z) const;
+  // Derivative `order` (1 or 2) of function term f at z, with its coefficient and scale.
+  double function_derivative(int f, const ConstVectorRef& z, int order) const;
 
   bool finalized_ = false;
   int parallel_min_ = kDefaultParallelMin;
@@ -111,13 +135,28 @@ class PolynomialProgram : public Mpcc {
   std::vector<double> mono_coef_;
   std::vector<int> mono_v_;  // 3 per monomial
 
+  // Function terms coef * g(scale * z_var); those of row r are [fterm_begin_[r],
+  // fterm_begin_[r+1]) after finalize (sorted by row; row m = objective).
+  struct FunctionTerm {
+    int row;
+    double coef;
+    const UnivariateFunction* g;
+    int var;
+    double scale;
+  };
+  std::vector<FunctionTerm> fterm_;
+  std::vector<int> fterm_begin_;
+  std::vector<std::shared_ptr<const UnivariateFunction>> functions_;  // owns every g
+
   // A contribution to one derivative entry: weight(row) * coef * z_u * z_w
-  // (u, w = -1 when absent; w is always -1 for the Hessian).
+  // (u, w = -1 when absent; w is always -1 for the Hessian), or, where fn >= 0,
+  // weight(row) times the derivative of function term fn.
   struct Contributions {
     std::vector<int> begin;  // per entry, CSR into the arrays below
     std::vector<int> row;
     std::vector<double> coef;
     std::vector<int> u, w;
+    std::vector<int> fn;
   };
   Contributions jac_c_;   // per Jacobian nonzero
   Contributions grad_c_;  // per gradient entry (objective row)

@@ -14,7 +14,8 @@ from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Patch, Polygon  # noqa: E402
 
 from viz.solution_file import (all_contacts, bounds, contacts_at,  # noqa: E402
-                               default_contact_threshold, moves, obstacle_at, state_at)
+                               default_contact_threshold, moves, obstacle_at, obstacle_way,
+                               state_at)
 
 DPI = 100
 
@@ -99,8 +100,9 @@ def draw_obstacles(ax, sol, t, frac=1.0, path=False, label=None):
             ax.text(x, y, label, ha="center", va="center", fontsize=9, zorder=1.7,
                     color="white" if frac > 0.6 else "black")
         if path and moves(ob) and sol["T_f"]:
-            (x0, y0), (x1, y1) = obstacle_at(ob, 0.0), obstacle_at(ob, sol["T_f"])
-            ax.plot([x0, x1], [y0, y1], ls=":", lw=1.2, color=OBSTACLE_EDGE, zorder=1.4)
+            way = obstacle_way(ob, sol["T_f"])
+            ax.plot([p[0] for p in way], [p[1] for p in way], ls=":", lw=1.2, color=OBSTACLE_EDGE,
+                    zorder=1.4)
 
 
 # A white edge around a target's dashes and cross: they stay visible over a disk of the same

@@ -182,7 +182,9 @@ def load(path, full=False):
 
 def read_obstacles(doc):
     """The file's obstacles (none in files written before disco had them): name, shape
-    ("disk" or "wall"), radius, and a disk's centre and velocity or a wall's ends."""
+    ("disk" or "wall"), radius, and a wall's ends or a disk's centre at t = 0 with its
+    constant velocity or its waypoints (path); a disk's centres at the states (x, y, written
+    with a solution) become its track, with the step h."""
     obstacles = doc.get("obstacles", [])
     if not isinstance(obstacles, list):
         raise BadInput("'obstacles' is not a list")
@@ -194,11 +196,25 @@ def read_obstacles(doc):
             raise BadInput(f"'{w}.shape' is {json.dumps(shape)}, expected \"disk\" or \"wall\"")
         ob = {"name": str(need(o, "name", w)), "shape": shape,
               "radius": number(need(o, "radius", w), f"{w}.radius")}
-        for key in (("from", "to") if shape == "wall" else ("centre", "velocity")):
+        if shape == "disk" and o.get("path") is not None:
+            path = o["path"]
+            if not isinstance(path, list) or len(path) < 2:
+                raise BadInput(f"'{w}.path' is not a list of at least two waypoints")
+            ob["path"] = [[number(need(p, key, f"{w}.path[{i}]"), f"{w}.path[{i}].{key}")
+                           for key in ("t", "x", "y")] for i, p in enumerate(path)]
+        keys = ("from", "to") if shape == "wall" else ("centre",) if "path" in ob else ("centre", "velocity")
+        for key in keys:
             v = need(o, key, w)
             if not isinstance(v, list) or len(v) != 2:
                 raise BadInput(f"'{w}.{key}' is not a list [x, y]")
             ob[key] = [number(c, f"{w}.{key}[{a}]") for a, c in enumerate(v)]
+        if shape == "disk" and o.get("x") is not None and doc.get("h"):
+            xs, ys = o["x"], o.get("y")
+            if not isinstance(xs, list) or not isinstance(ys, list) or len(xs) != len(ys) or len(xs) < 2:
+                raise BadInput(f"'{w}.x' and '{w}.y' are not two lists of the same length")
+            ob["track"] = [(number(x, f"{w}.x[{i}]"), number(y, f"{w}.y[{i}]"))
+                           for i, (x, y) in enumerate(zip(xs, ys))]
+            ob["h"] = number(doc["h"], "h")
         out.append(ob)
     return out
 
@@ -206,12 +222,32 @@ def read_obstacles(doc):
 # --- geometry ---------------------------------------------------------------------------------
 
 def obstacle_at(ob, t):
-    """A disk obstacle's centre at time t (it moves at constant velocity from t = 0)."""
+    """A disk obstacle's centre at time t: on its track (its centres at the states, straight
+    between them), or from its constant velocity; a path obstacle without a track (a file
+    without a solution) is drawn at its first waypoint."""
+    track = ob.get("track")
+    if track:
+        s = min(max(t / ob["h"], 0.0), float(len(track) - 1))
+        k = min(int(math.floor(s)), len(track) - 2)
+        f = s - k
+        return tuple(track[k][a] * (1 - f) + track[k + 1][a] * f for a in (0, 1))
+    if "path" in ob:
+        return tuple(ob["centre"])
     return (ob["centre"][0] + t * ob["velocity"][0], ob["centre"][1] + t * ob["velocity"][1])
 
 
+def obstacle_way(ob, T_f):
+    """The places a moving disk obstacle passes over [0, T_f]: its track, its waypoints (a
+    path without a track), or the two ends of its straight way."""
+    if ob.get("track"):
+        return list(ob["track"])
+    if "path" in ob:
+        return [(p[1], p[2]) for p in ob["path"]]
+    return [obstacle_at(ob, 0.0), obstacle_at(ob, T_f)]
+
+
 def moves(ob):
-    return ob["shape"] == "disk" and any(v != 0.0 for v in ob["velocity"])
+    return ob["shape"] == "disk" and ("path" in ob or any(v != 0.0 for v in ob["velocity"]))
 
 
 def state_at(rob, t, h, n_t):
@@ -284,7 +320,7 @@ def bounds(sol):
     T_f = sol["T_f"] or 0.0
     for ob in sol.get("obstacles", []):
         rad = ob["radius"]
-        ends = (ob["from"], ob["to"]) if ob["shape"] == "wall" else (obstacle_at(ob, 0.0), obstacle_at(ob, T_f))
+        ends = (ob["from"], ob["to"]) if ob["shape"] == "wall" else obstacle_way(ob, T_f)
         for (x, y) in ends:
             xs += [x - rad, x + rad]
             ys += [y - rad, y + rad]
