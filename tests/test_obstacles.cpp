@@ -246,6 +246,33 @@ TEST(ObstacleSolve, WallsThatCloseTheOnlyWayMakeTheSceneInfeasibleAtAnySteps) {
   }
 }
 
+// Paper B1's crossing with a post at the centre, at 5 steps (a step is up to ~2.5 m long,
+// more than the post's clearance R = R_i + R_o = 1.1 m). Without swept rows for disk
+// obstacles a robot stepped through the post's centre (swept_gap -1.1 m: -R). The row
+// (core/model/swept.h) keeps every straight step off the centre: with both ends at least R
+// away, by at least sqrt(1 - 0.9^2) R = 0.436 R, computed here from the file.
+TEST(ObstacleSolve, AFewLongStepsGoRoundAPostNotOverIt) {
+  Scene scene = load_scene(std::string(DISCO_SOURCE_DIR) + "/configs/scenarios/post_crossing.yaml");
+  scene.steps = 5;
+  const SceneSolve run = solve_scene(scene, Settings::load(default_settings_path()));
+  ASSERT_TRUE(run.solved()) << to_string(run.info.status);
+  const nlohmann::json sol = solution_json(*run.problem, run.z, run.info);
+  const auto& post = sol["obstacles"][0];
+  ASSERT_EQ(post["shape"], "disk");
+  const double cx = post["centre"][0], cy = post["centre"][1];
+  for (const auto& rob : sol["robots"]) {
+    const double R = double(rob["radius"]) + double(post["radius"]);
+    for (std::size_t k = 0; k + 1 < rob["x"].size(); ++k) {
+      const double ax = double(rob["x"][k]) - cx, ay = double(rob["y"][k]) - cy;
+      const double dx = double(rob["x"][k + 1]) - double(rob["x"][k]), dy = double(rob["y"][k + 1]) - double(rob["y"][k]);
+      const double dd = dx * dx + dy * dy;  // 0 where the robot rests
+      const double s = dd > 0 ? std::clamp(-(ax * dx + ay * dy) / dd, 0.0, 1.0) : 0.0;
+      EXPECT_GE(std::hypot(ax + s * dx, ay + s * dy), std::sqrt(1.0 - 0.81) * R - 1e-6)
+          << rob["name"] << ", step " << k;
+    }
+  }
+}
+
 double way_length(const Way& way) {
   double L = 0.0;
   for (std::size_t k = 1; k < way.size(); ++k) L += std::hypot(way[k][0] - way[k - 1][0], way[k][1] - way[k - 1][1]);

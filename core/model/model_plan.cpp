@@ -172,9 +172,9 @@ ModelPlan plan_model(const Scene& s, bool adaptive, double horizon_max) {
       plan.pairs[p].first = first;
       plan.pairs[p].last = last;
     }
-    // Obstacle pairs: the obstacle's place up to state t is within the box of its
-    // segment (a wall) or of its way from tau = 0 to t h (a disk; obstacle_box), rounded
-    // by R_o. A wall pair keeps state t also where the move from t - 1 to t or from t to
+    // Obstacle pairs: the obstacle's place up to state t + 1 is within the box of its
+    // segment (a wall) or of its way from tau = 0 to (t + 1) h (a disk; obstacle_box),
+    // rounded by R_o. A pair keeps state t also where the move from t - 1 to t or from t to
     // t + 1 comes within reach (its region from t_f = t + 1 and t_b = t - 1 holds both), so
     // every such step carries the swept row (core/model/swept.h).
     for (int q = 0; q < static_cast<int>(s.obstacle_pairs.size()); ++q) {
@@ -183,12 +183,10 @@ ModelPlan plan_model(const Scene& s, bool adaptive, double horizon_max) {
       const double reach = obstacle_clearance(s, pr) + kReachMargin * (s.robots[pr.i].radius + ob.radius);
       int first = N + 1, last = 0;
       for (int t = 1; t <= N; ++t) {
-        const auto box = obstacle_box(ob, 0.0, t * h);
+        const auto box = obstacle_box(ob, 0.0, std::min(t + 1, N) * h);
         const RoundedBox o{box[0], box[1], ob.radius};
         double apart = -kInf;
-        const bool wall = ob.shape == ObstacleShape::kWall;
-        for (const auto& ra : regions(pr.i, wall ? std::min(t + 1, N) : t, wall ? t - 1 : t))
-          apart = std::max(apart, distance_bound(ra, o));
+        for (const auto& ra : regions(pr.i, std::min(t + 1, N), t - 1)) apart = std::max(apart, distance_bound(ra, o));
         if (!(apart > reach)) first = std::min(first, t), last = t;
       }
       plan.pairs[np + q].first = first;

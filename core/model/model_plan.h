@@ -55,14 +55,14 @@
 //    the solver reports the infeasibility as the full model would).
 // Obstacles (core/model/obstacles.h) take part as pairs: a disk-obstacle pair keeps
 //    the states where the disk's region comes within reach of the obstacle's place (a
-//    wall's segment, or a moving disk's way so far, rounded by its radius). A wall pair
-//    tests state t with the region r_f(t + 1), r_b(t - 1), which holds the straight moves
-//    from t - 1 to t and from t to t + 1 (convex regions, r_f growing and r_b shrinking),
-//    so every step that can come within reach carries its swept row (core/model/swept.h).
-//    That row is the one exception to "the adaptive model IS the full model": it is
-//    conservative (a step near a wall is at most as long as the wall-free disks around its
-//    ends cover), and the adaptive model leaves it out where the move provably stays
-//    beyond reach, where the full model keeps it. A fixed
+//    wall's segment, or a moving disk's way up to the next state, rounded by its radius).
+//    A pair tests state t with the region r_f(t + 1), r_b(t - 1), which holds the
+//    straight moves from t - 1 to t and from t to t + 1 (convex regions, r_f growing and
+//    r_b shrinking), so every step that can come within reach carries its swept row
+//    (core/model/swept.h). That row is the one exception to "the adaptive model IS the
+//    full model": it is conservative (a step near an obstacle is at most as long as the
+//    obstacle-free disks around its ends cover), and the adaptive model leaves it out
+//    where the move provably stays beyond reach, where the full model keeps it. A fixed
 //    obstacle's impulses never add energy (the distance to a convex set is convex, so
 //    the normal impulse's power is <= 0 as in item 1; friction by maximum
 //    dissipation); a disk in contact with one takes the energy bound of item 1, which
