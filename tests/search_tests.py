@@ -216,20 +216,27 @@ elif MODE == "resume":
 elif MODE == "timelimit":
     clean, out = os.path.join(WORK, "clean"), os.path.join(WORK, "timelimit")
     check(search(clean, 1, *DET) == 0, "clean 1-rank search exits 0")
-    shutil.rmtree(out, ignore_errors=True)
-    t0 = time.time()
-    r = subprocess.run([DISCO, "search", BENCH, "--seed", "7", "--out", out, "--time-limit", "3", *DET],
-                       env=ENV, capture_output=True, text=True)
-    wall = time.time() - t0
+    # What is checked needs a start in flight when the limit passes. On a loaded machine a
+    # start can end just before it and the next be refused at it (nothing in flight, nothing
+    # cut): then the search is run again with a later limit, up to three limits.
+    for limit in (3.0, 3.7, 4.4):
+        shutil.rmtree(out, ignore_errors=True)
+        t0 = time.time()
+        r = subprocess.run([DISCO, "search", BENCH, "--seed", "7", "--out", out, "--time-limit", str(limit),
+                            *DET], env=ENV, capture_output=True, text=True)
+        wall = time.time() - t0
+        if os.path.exists(os.path.join(out, "runs.jsonl")) and any(x["status"] == "time_limit" for x in runs(out)):
+            break
+        print(f"note: no start was in flight at the {limit} s limit; again with a later limit")
     b = best(out)
     check(r.returncode in (0, 3), f"time-limited search exits 0 or 3 (got {r.returncode})")
-    check(wall < 3 + 10, f"ends soon after the limit ({wall:.1f} s)")
+    check(wall < limit + 10, f"ends soon after the {limit} s limit ({wall:.1f} s)")
     check(b["time_limit_reached"] is True, "best.json says the time limit was reached")
     check(0 < b["starts_finished"] < b["starts_total"], f"{b['starts_finished']} of {b['starts_total']} starts ran")
     rs = runs(out)
     cut = [x for x in rs if x["status"] == "time_limit"]
     check(len(rs) == b["starts_finished"] + len(cut), "runs.jsonl holds every start that ended or was cut")
-    check(len(cut) >= 1 and all(x["budget"]["set_by"] == "search" and x["budget"]["seconds"] <= 3
+    check(len(cut) >= 1 and all(x["budget"]["set_by"] == "search" and x["budget"]["seconds"] <= limit
                                 for x in cut),
           f"the start in flight at the limit is recorded as time_limit, set by the search ({len(cut)})")
     for x in cut:
