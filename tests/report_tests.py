@@ -354,6 +354,19 @@ def build():
           f"a solve output: titled by its scene, its solution.json under raw data, found by "
           f"'disco solve, start 0' ({summary[0][-1] if summary else 'no summary row'})")
 
+    # The scene line counts obstacles where there are some.
+    sentry = os.path.join(WORK, "solve_sentry")
+    r = run([DISCO, "solve", os.path.join(CONFIGS, "scenarios", "moving_path.yaml"),
+             "--set", "scene.steps=10", "--out", sentry, "--quiet"])
+    r2 = run([REPORT, sentry, "--no-animation"])
+    with open(os.path.join(sentry, "report", "index.html")) as f:
+        scene_line = Page(f.read()).facts.get((anchor("moving_path"), "scene"))
+    plain_line = p.facts.get((anchor("one_robot_axis"), "scene"))
+    check(r.returncode == 0 and r2.returncode == 0
+          and scene_line == "1 robot, 0 pairs (none), 1 obstacle, N_t = 10"
+          and plain_line == "1 robot, 0 pairs (none), N_t = 20",
+          f"the scene line: '1 obstacle' in a scene with one ({scene_line!r}), none without ({plain_line!r})")
+
     # Another objective (core/model/objective.h): the page names it and its value from the
     # solution file, and measures no gap of it against the lower bound on T_f.
     energy = os.path.join(WORK, "solve_energy")

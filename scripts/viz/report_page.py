@@ -300,8 +300,11 @@ def scene_section(s):
     if info.get("robots") is not None:
         objects = info.get("objects") or 0
         disks = plural(info["robots"], "robot") + (", " + plural(objects, "object") if objects else "")
+        obstacles = info.get("obstacles") or 0
         facts.append(("scene", f"{disks}, {plural(info['pairs'], 'pair')} "
-                               f"({esc(info.get('pair_modes', ''))}), N_t = {info['N_t']}"))
+                               f"({esc(info.get('pair_modes', ''))})"
+                               + (f", {plural(obstacles, 'obstacle')}" if obstacles else "")
+                               + f", N_t = {info['N_t']}"))
     links = [f'<a href="{esc(p)}">{esc(label)}</a>' for label, p in s["links"]]
     if links:
         facts.append(("raw data", " · ".join(links)))
