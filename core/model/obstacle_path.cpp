@@ -1,6 +1,7 @@
 #include "core/model/obstacle_path.h"
 
-#include <Eigen/Dense>
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <memory>
 
@@ -13,19 +14,25 @@ PathCoordinate::PathCoordinate(const std::vector<Waypoint>& w, int axis) {
   DISCO_CHECK(n >= 1, "a path has at least two waypoints");
   for (int k = 0; k < n; ++k) DISCO_CHECK(w[k + 1].t > w[k].t, "waypoint times increase");
   // Second derivatives M_k at the knots: the clamped spline's tridiagonal system (slope 0 at
-  // both ends), solved densely: paths have a few waypoints.
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n + 1, n + 1);
+  // both ends). It is symmetric and strictly diagonally dominant, hence positive definite:
+  // a sparse Cholesky solves it in O(n), so a path sampled at thousands of waypoints costs
+  // no more than its length.
+  std::vector<Eigen::Triplet<double>> entries;
   Eigen::VectorXd b = Eigen::VectorXd::Zero(n + 1);
   auto h = [&](int k) { return w[k + 1].t - w[k].t; };
   auto slope = [&](int k) { return (w[k + 1].p[axis] - w[k].p[axis]) / h(k); };
   for (int k = 0; k <= n; ++k) {
     const double left = k > 0 ? h(k - 1) : 0.0, right = k < n ? h(k) : 0.0;
-    A(k, k) = 2.0 * (left + right);
-    if (k > 0) A(k, k - 1) = left;
-    if (k < n) A(k, k + 1) = right;
+    entries.emplace_back(k, k, 2.0 * (left + right));
+    if (k > 0) entries.emplace_back(k, k - 1, left);
+    if (k < n) entries.emplace_back(k, k + 1, right);
     b[k] = 6.0 * ((k < n ? slope(k) : 0.0) - (k > 0 ? slope(k - 1) : 0.0));
   }
-  const Eigen::VectorXd M = A.partialPivLu().solve(b);
+  Eigen::SparseMatrix<double> A(n + 1, n + 1);
+  A.setFromTriplets(entries.begin(), entries.end());
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factor(A);
+  DISCO_CHECK(factor.info() == Eigen::Success, "the clamped spline's system is positive definite");
+  const Eigen::VectorXd M = factor.solve(b);
   for (int k = 0; k < n; ++k) {
     t_.push_back(w[k].t);
     c_.push_back({w[k].p[axis], slope(k) - h(k) * (2.0 * M[k] + M[k + 1]) / 6.0, 0.5 * M[k],
