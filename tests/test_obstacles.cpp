@@ -163,14 +163,19 @@ TEST(ObstaclePlan, OnlyObstaclesWithinReachGetAWindow) {
 
 // The solution file's disk at state k against obstacle `ob` at time t_k: the centre's
 // distance to the obstacle's core, computed here from the file's numbers.
+// The waypoints of a solution file's obstacle.
+std::vector<Waypoint> file_path(const nlohmann::json& ob) {
+  std::vector<Waypoint> path;
+  for (const auto& w : ob["path"]) path.push_back({w["t"], {w["x"], w["y"]}});
+  return path;
+}
+
 // A disk on waypoints is where its path (core/model/obstacle_path.h, tested on its own in
 // tests/test_obstacle_path.cpp) through the file's waypoints puts it.
 double core_distance(const nlohmann::json& rob, const nlohmann::json& ob, int k, double t) {
   const double x = rob["x"][k], y = rob["y"][k];
   if (ob["shape"] == "disk" && ob.contains("path")) {
-    std::vector<Waypoint> path;
-    for (const auto& w : ob["path"]) path.push_back({w["t"], {w["x"], w["y"]}});
-    const auto c = path_point(path, t);
+    const auto c = path_point(file_path(ob), t);
     return std::hypot(x - c[0], y - c[1]);
   }
   if (ob["shape"] == "disk") {
@@ -355,8 +360,7 @@ TEST(ObstacleSolve, ARobotCrossingASentryOnWaypointsNeverTouchesIt) {
   ASSERT_FALSE(sol.is_null());
   const auto& ob = sol["obstacles"][0];
   ASSERT_EQ(ob["path"].size(), 5u);
-  std::vector<Waypoint> path;
-  for (const auto& w : ob["path"]) path.push_back({w["t"], {w["x"], w["y"]}});
+  const std::vector<Waypoint> path = file_path(ob);
   const double h = sol["h"];
   for (std::size_t k = 0; k < ob["x"].size(); ++k) {
     EXPECT_NEAR(double(ob["x"][k]), path_point(path, k * h)[0], 1e-12) << k;

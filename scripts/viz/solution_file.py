@@ -184,7 +184,7 @@ def read_obstacles(doc):
     """The file's obstacles (none in files written before disco had them): name, shape
     ("disk" or "wall"), radius, and a wall's ends or a disk's centre at t = 0 with its
     constant velocity or its waypoints (path); a disk's centres at the states (x, y, written
-    with a solution) become its track, with the step h."""
+    with a solution) are kept (x, y: its track), with the step h."""
     obstacles = doc.get("obstacles", [])
     if not isinstance(obstacles, list):
         raise BadInput("'obstacles' is not a list")
@@ -212,8 +212,8 @@ def read_obstacles(doc):
             xs, ys = o["x"], o.get("y")
             if not isinstance(xs, list) or not isinstance(ys, list) or len(xs) != len(ys) or len(xs) < 2:
                 raise BadInput(f"'{w}.x' and '{w}.y' are not two lists of the same length")
-            ob["track"] = [(number(x, f"{w}.x[{i}]"), number(y, f"{w}.y[{i}]"))
-                           for i, (x, y) in enumerate(zip(xs, ys))]
+            ob["x"] = [number(x, f"{w}.x[{i}]") for i, x in enumerate(xs)]
+            ob["y"] = [number(y, f"{w}.y[{i}]") for i, y in enumerate(ys)]
             ob["h"] = number(doc["h"], "h")
         out.append(ob)
     return out
@@ -225,12 +225,8 @@ def obstacle_at(ob, t):
     """A disk obstacle's centre at time t: on its track (its centres at the states, straight
     between them), or from its constant velocity; a path obstacle without a track (a file
     without a solution) is drawn at its first waypoint."""
-    track = ob.get("track")
-    if track:
-        s = min(max(t / ob["h"], 0.0), float(len(track) - 1))
-        k = min(int(math.floor(s)), len(track) - 2)
-        f = s - k
-        return tuple(track[k][a] * (1 - f) + track[k + 1][a] * f for a in (0, 1))
+    if "x" in ob:
+        return along(ob, ("x", "y"), t, ob["h"], len(ob["x"]) - 1)
     if "path" in ob:
         return tuple(ob["centre"])
     return (ob["centre"][0] + t * ob["velocity"][0], ob["centre"][1] + t * ob["velocity"][1])
@@ -239,8 +235,8 @@ def obstacle_at(ob, t):
 def obstacle_way(ob, T_f):
     """The places a moving disk obstacle passes over [0, T_f]: its track, its waypoints (a
     path without a track), or the two ends of its straight way."""
-    if ob.get("track"):
-        return list(ob["track"])
+    if "x" in ob:
+        return list(zip(ob["x"], ob["y"]))
     if "path" in ob:
         return [(p[1], p[2]) for p in ob["path"]]
     return [obstacle_at(ob, 0.0), obstacle_at(ob, T_f)]
@@ -250,12 +246,17 @@ def moves(ob):
     return ob["shape"] == "disk" and ("path" in ob or any(v != 0.0 for v in ob["velocity"]))
 
 
-def state_at(rob, t, h, n_t):
-    """(x, y, phi) at time t, linear between the stored states."""
+def along(obj, keys, t, h, n_t):
+    """The series obj[key] (N_t + 1 values at t_k = k h) at time t, linear between states."""
     s = min(max(t / h, 0.0), float(n_t))
     k = min(int(math.floor(s)), n_t - 1)
     f = s - k
-    return tuple(rob[key][k] * (1 - f) + rob[key][k + 1] * f for key in ("x", "y", "phi"))
+    return tuple(obj[key][k] * (1 - f) + obj[key][k + 1] * f for key in keys)
+
+
+def state_at(rob, t, h, n_t):
+    """(x, y, phi) at time t, linear between the stored states."""
+    return along(rob, ("x", "y", "phi"), t, h, n_t)
 
 
 def contacts_at(sol, t, h, thr, poses):
