@@ -232,7 +232,7 @@ int solve_checked(const SolveOptions& o, const Settings& settings, const Scene& 
   }
   // Every option is checked before anything runs, --model-only too.
   elastic_settings(settings);
-  IpoptSolver check(ipopt_options(settings));
+  IpoptSolver check(ipopt_settings(settings));
   if (o.model_only) return 0;
   std::filesystem::create_directories(out_dir);
   StartSpec start =

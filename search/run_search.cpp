@@ -157,7 +157,7 @@ int run_search(const SearchOptions& o, Transport& transport) {
   c.share = share_incumbent(c.settings);
   c.schedule = reduction_settings(c.settings);
   c.elastic = elastic_settings(c.settings);
-  IpoptSolver check(ipopt_options(c.settings));  // bad Ipopt options fail here, on every rank
+  IpoptSolver check(ipopt_settings(c.settings));  // bad Ipopt options fail here, on every rank
   c.plan = load_search_plan(o.configs, o.starts, 1, scene_sets);
   attach_guesses(c.plan, o.guesses);
   // Every scene's model must fit model.memory_limit, shared by this machine's ranks (each

@@ -74,7 +74,7 @@ SceneSolve solve_scene(const Scene& scene, const Settings& settings, const Start
                        const IncumbentFunction& incumbent) {
   const auto t0 = std::chrono::steady_clock::now();
   check_model_size(scene, model_options(settings).adaptive, memory_limit(settings));
-  IpoptSolver ipopt(ipopt_options(settings));
+  IpoptSolver ipopt(ipopt_settings(settings));
   // The budget caps the reduction, which gives every elastic solve only the time left.
   ReductionSettings schedule = start.schedule;
   if (time_budget_s > 0) {

@@ -403,9 +403,9 @@ elif MODE == "manifest":
           f"--resume refuses runs without a manifest ({r.stderr[-200:]!r})")
 elif MODE in ("interrupt", "killrandom"):
     swap = os.path.join(os.path.dirname(BENCH), "../scenarios/two_robots_swap_avoid.yaml")
-    # interrupt: two starts of ~6 s each, so both ranks are inside one at the signal;
+    # interrupt: two starts of ~6 s each (45 steps), so both ranks are inside one at the signal;
     # killrandom: the smoke benchmark.
-    config = [swap, "--set", "scene.steps=30", "--starts", "2"] if MODE == "interrupt" else [BENCH]
+    config = [swap, "--set", "scene.steps=45", "--starts", "2"] if MODE == "interrupt" else [BENCH]
 
     def command(out, *extra):
         return [DISCO, "search", *config, "--seed", "7", "--out", out, *DET, *extra]

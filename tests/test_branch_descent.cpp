@@ -22,7 +22,7 @@ namespace disco {
 namespace {
 
 using S = ComplementaritySide;
-using test_support::disco_yaml_ipopt_options;
+using test_support::disco_yaml_ipopt_settings;
 
 // min (x - a)^2 + (y - b)^2 with 0 <= x _|_ y >= 0; `row_side`: the pair's second side is
 // the row y (bounds free) instead of the variable y.
@@ -65,7 +65,7 @@ class BranchDescent : public ::testing::TestWithParam<std::tuple<ElasticFormulat
   // solve_branch on min (x - a)^2 + (y - b)^2 from (0, 0.5), where x is the smaller side.
   MpccResult descend(double a, double b, int max_flip_rounds) const {
     const auto m = make(a, b, row_side());
-    IpoptSolver ipopt(disco_yaml_ipopt_options());
+    IpoptSolver ipopt(disco_yaml_ipopt_settings());
     ElasticSolver solver(ipopt, settings());
     return solver.solve_branch(*m, at(*m, settings(), 0.0, 0.5), max_flip_rounds);
   }
@@ -113,7 +113,7 @@ TEST_P(BranchDescent, AnInfeasibleBranchReportsItsOwnStatusAndKeepsTheStartPoint
   p->add(r1, 1.0, Affine::variable(0));
   p->add_pair(S::variable(0), S::variable(1));
   p->finalize();
-  IpoptSolver ipopt(disco_yaml_ipopt_options());
+  IpoptSolver ipopt(disco_yaml_ipopt_settings());
   ElasticSolver solver(ipopt, settings());
   const MpccResult r = solver.solve_branch(*p, at(*p, settings(), 0.0, 0.5), 5);
   EXPECT_FALSE(r.solved());

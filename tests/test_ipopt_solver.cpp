@@ -77,7 +77,7 @@ TEST(IpoptSolverOptions, ValidListIsAccepted) {
   EXPECT_EQ(construction_error({"max_iter", "1e2", "w"}), "");  // an integral number
   EXPECT_EQ(construction_error({"tol", "1e-7", "w"}), "");
   EXPECT_EQ(construction_error({"mu_strategy", "monotone", "w"}), "");
-  EXPECT_NO_THROW(IpoptSolver solver({}));
+  EXPECT_NO_THROW(IpoptSolver solver(std::vector<IpoptOption>{}));
 }
 
 // Finding (see the report): "nan" parses as a number and passes Ipopt's range

@@ -498,14 +498,7 @@ std::string ipopt_derivative_test(const Nlp& nlp, const Vector& x0, const std::s
 }
 
 TEST(ModelIpoptDerivativeTest, TwoRobotContactSceneHasNoErrors) {
-  // Two robots heading for each other along x (slightly offset), in contact mode.
-  Robot a = make_robot("a", 0.5, 1.0, 0.2, 5.0, 0.0, 0.0, 4);
-  Robot b = make_robot("b", 0.45, 1.2, 0.25, 6.0, 3.0, 0.3, 5);
-  a.target.lower = {3, 0.3, -kInf, 0, 0, -kInf};
-  a.target.upper = {3, 0.3, kInf, 0, 0, kInf};
-  b.target.lower = {0, 0, -kInf, 0, 0, -kInf};
-  b.target.upper = {0, 0, kInf, 0, 0, kInf};
-  const Scene scene = make_scene("two_contact", 5, {a, b}, PairMode::kContact, 0.3);
+  const Scene scene = model_test::two_robots_meeting_in_contact(5);
   const RobotProblem rp(scene);
   const ElasticNlp elastic(rp.program(), ElasticFormulation::kLumped, 10.0);
   const Vector x0 = elastic.lift(smoothstep_guess(rp, 4.0));

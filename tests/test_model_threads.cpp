@@ -123,7 +123,7 @@ TEST(ModelThreads, ElasticSolveIsBitwiseIdenticalWithOneAndTwoThreads) {
     rp.program().set_parallel_threshold(kParallelMin);
     // At least the Jacobian loop forks with two threads.
     EXPECT_GE(rp.program().jacobian_pattern().size(), kParallelMin);
-    IpoptSolver ipopt(ipopt_options(settings));
+    IpoptSolver ipopt(ipopt_settings(settings));
     ElasticSolver solver(ipopt, elastic_settings(settings));
     // The feasibility phase (fixed, generous horizon), then a free horizon
     // below it, warm-started: both phases of the objective reduction.

@@ -35,7 +35,7 @@
 namespace disco {
 namespace {
 
-using test_support::disco_yaml_ipopt_options;
+using test_support::disco_yaml_ipopt_settings;
 using test_support::expect_exact_derivatives;
 using test_support::minimize_1d;
 using S = ComplementaritySide;
@@ -439,9 +439,9 @@ std::string mode_name(ElasticFormulation form, bool polish) {
 }
 
 // Solves `m` from `start` with `s`, on a fresh IpoptSolver with the options of
-// configs/disco.yaml.
+// configs/disco.yaml (its ipopt: and kkt: sections).
 MpccResult solve_fresh(const Mpcc& m, const ConstVectorRef& start, const ElasticSettings& s) {
-  IpoptSolver ipopt(disco_yaml_ipopt_options());
+  IpoptSolver ipopt(disco_yaml_ipopt_settings());
   ElasticSolver solver(ipopt, s);
   return solver.solve(m, start);
 }
@@ -658,7 +658,7 @@ TEST_P(MpccZetaRule, ReportsNotTightWhenZetaMaxIsTooSmall) {
 TEST_P(MpccZetaRule, StallRuleStopsEarlyWhenTheResidualDoesNotMove) {
   const auto [form, polish] = GetParam();
   const auto p = never_tight_problem();
-  IpoptSolver ipopt(disco_yaml_ipopt_options());
+  IpoptSolver ipopt(disco_yaml_ipopt_settings());
   ElasticSettings s = settings_for(form, polish);  // zeta 10, factor 10, max 1e6
   const MpccResult stalled = ElasticSolver(ipopt, s).solve(p, p.initial_point());
   s.stall_change = kNoStall;
@@ -702,7 +702,7 @@ class MpccWarmStart : public ::testing::TestWithParam<FormPolish> {};
 TEST_P(MpccWarmStart, AfterTighteningABound) {
   const auto [form, polish] = GetParam();
   ExpSqrtMpcc m;
-  IpoptSolver ipopt(disco_yaml_ipopt_options());
+  IpoptSolver ipopt(disco_yaml_ipopt_settings());
   ElasticSolver solver(ipopt, settings_for(form, polish));
   const MpccResult first = solver.solve(m, (Vector(2) << 1.0, 1.0).finished());
   ASSERT_EQ(first.status, MpccStatus::kSolved) << describe(first);

@@ -666,7 +666,7 @@ TEST(Start, ReductionFromADetourStartReachesACertifiedSolution) {
   ASSERT_EQ(start.guess, GuessKind::kDetour);
   std::printf("%s\n", start.describe().c_str());
   RobotProblem problem(scene);
-  IpoptSolver ipopt(ipopt_options(settings));
+  IpoptSolver ipopt(ipopt_settings(settings));
   ElasticSolver solver(ipopt, start.elastic);
   const ReductionResult result = reduce_objective(
       problem, solver, start.schedule,

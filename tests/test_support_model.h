@@ -75,6 +75,19 @@ inline Scene make_scene(const std::string& name, int steps, std::vector<Robot> r
   return s;
 }
 
+// Two robots in contact mode heading for each other along x (slightly offset), each to the
+// other's start at rest: the elastic NLP of such a scene has bilinear complementarity terms
+// (an indefinite Hessian) and contact forces.
+inline Scene two_robots_meeting_in_contact(int steps) {
+  Robot a = make_robot("a", 0.5, 1.0, 0.2, 5.0, 0.0, 0.0, 4);
+  Robot b = make_robot("b", 0.45, 1.2, 0.25, 6.0, 3.0, 0.3, 5);
+  a.target.lower = {3, 0.3, -kInf, 0, 0, -kInf};
+  a.target.upper = {3, 0.3, kInf, 0, 0, kInf};
+  b.target.lower = {0, 0, -kInf, 0, 0, -kInf};
+  b.target.upper = {0, 0, kInf, 0, 0, kInf};
+  return make_scene("two_contact", steps, {a, b}, PairMode::kContact, 0.3);
+}
+
 // Appends obstacle `ob` to `s` with a pair (mode, mu, d_s) for every disk.
 inline void add_obstacle(Scene& s, const Obstacle& ob, PairMode mode, double mu = 0.3,
                          double safe_distance = 0.01) {

@@ -24,6 +24,11 @@ inline std::vector<IpoptOption> disco_yaml_ipopt_options() {
   return ipopt_options(Settings::load(default_settings_path()));
 }
 
+// The `ipopt:` and `kkt:` sections of configs/disco.yaml: an IpoptSolver as disco makes it.
+inline IpoptSettings disco_yaml_ipopt_settings() {
+  return ipopt_settings(Settings::load(default_settings_path()));
+}
+
 // disco.yaml's ipopt options with warm-started points pushed only 1e-9 inside their bounds
 // (disco.yaml pushes 1e-3): for the tests of the adapter's warm start, which check that a
 // solve restarted from a converged point and its duals is done at once (1-2 iterations);

@@ -67,6 +67,10 @@ std::vector<IpoptOption> ipopt_options(const Settings& settings) {
   return out;
 }
 
+IpoptSettings ipopt_settings(const Settings& settings) {
+  return {ipopt_options(settings), settings.boolean("kkt.perturbed_first")};
+}
+
 MemoryLimit memory_limit(const Settings& s) {
   constexpr double kAutoShare = 0.5;  // auto: this share of the machine's memory
   constexpr double kGiB = 1024.0 * 1024.0 * 1024.0;

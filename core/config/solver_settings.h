@@ -59,6 +59,7 @@ struct ReductionSettings {
 };
 
 std::vector<IpoptOption> ipopt_options(const Settings& settings);    // the `ipopt:` section
+IpoptSettings ipopt_settings(const Settings& settings);  // `ipopt:` + `kkt:`: an IpoptSolver's
 ElasticSettings elastic_settings(const Settings& settings);          // the `elastic:` section
 ModelOptions model_options(const Settings& settings);                // the `model:` section
 // model.memory_limit: `auto` (half of the machine's physical memory, or of its cgroup's

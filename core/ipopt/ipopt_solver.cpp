@@ -1,7 +1,9 @@
 #include "core/ipopt/ipopt_solver.h"
+#include "core/ipopt/perturbed_first.h"
 
 #include <IpIpoptApplication.hpp>
 #include <IpTNLP.hpp>
+#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <chrono>
@@ -246,6 +248,10 @@ struct IpoptSolver::Application {
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = new Ipopt::IpoptApplication();
 };
 
+IpoptSolver::IpoptSolver(const IpoptSettings& settings) : IpoptSolver(settings.options) {
+  perturbed_first_ = settings.perturbed_first;
+}
+
 IpoptSolver::IpoptSolver(const std::vector<IpoptOption>& options)
     : app_(std::make_unique<Application>()) {
   auto& app = app_->app;
@@ -301,7 +307,17 @@ NlpResult IpoptSolver::solve(const Nlp& nlp, const NlpPoint& start, const NlpLim
   app->Options()->SetNumericValue("tol", std::max(stage.tol, tol_));
   auto* adapter = new TnlpAdapter(nlp, start, out, limits);
   Ipopt::SmartPtr<Ipopt::TNLP> tnlp = adapter;
-  out.ipopt_status = static_cast<int>(app->OptimizeTNLP(tnlp));
+  {
+    const bool cold = !(warm_start_ && start.has_duals());
+    PerturbedFirstScope perturbed_first(perturbed_first_, cold);
+    out.ipopt_status = static_cast<int>(app->OptimizeTNLP(tnlp));
+    static bool warned = false;
+    if (perturbed_first_ && !perturbed_first.active() && out.iterations > 0 && !warned) {
+      warned = true;
+      spdlog::warn("kkt.perturbed_first: Ipopt's MUMPS calls do not reach disco's dmumps_c "
+                   "(MUMPS is linked ahead of disco); solving without it");
+    }
+  }
   if (adapter->error()) std::rethrow_exception(adapter->error());  // a bug in a callback
   out.outcome = outcome_of(out.ipopt_status, adapter->stopped());
   out.seconds = std::chrono::duration<double>(Clock::now() - t0).count();

@@ -1,7 +1,8 @@
 // disco — solving an Nlp with Ipopt (exact Jacobian, exact Hessian).
 //
 // IpoptSolver owns one Ipopt application configured from option entries
-// (normally the `ipopt:` section of configs/disco.yaml plus `--set ipopt.*`).
+// (normally the `ipopt:` section of configs/disco.yaml plus `--set ipopt.*`), and the `kkt:`
+// section's treatment of Ipopt's factorisations (core/ipopt/perturbed_first.h).
 // Each entry is checked against Ipopt's registry when the solver is made: an
 // unknown name or a bad value is an InputError naming where it was given.
 //
@@ -26,6 +27,15 @@ namespace disco {
 struct IpoptOption {
   std::string name, value;
   std::string where;  // "FILE:LINE" or "--set", for error messages
+};
+
+// What an IpoptSolver is made from: Ipopt's options, and how disco treats Ipopt's KKT
+// factorisations (the `kkt:` section of configs/disco.yaml).
+struct IpoptSettings {
+  std::vector<IpoptOption> options;
+  // Start every iteration's factorisation from a Hessian perturbation (Ipopt's
+  // degenerate-Hessian mode) instead of first trying none: core/ipopt/perturbed_first.h.
+  bool perturbed_first = false;
 };
 
 // Primal and dual values of an NLP solve (Ipopt's sign conventions).
@@ -90,6 +100,8 @@ std::string describe(NlpOutcome outcome, int ipopt_status);
 
 class IpoptSolver {
  public:
+  explicit IpoptSolver(const IpoptSettings& settings);
+  // Ipopt exactly as these options configure it (no disco treatment of its factorisations).
   explicit IpoptSolver(const std::vector<IpoptOption>& options);
   ~IpoptSolver();
   IpoptSolver(const IpoptSolver&) = delete;
@@ -103,6 +115,7 @@ class IpoptSolver {
  private:
   struct Application;  // holds Ipopt's reference-counted application
   std::unique_ptr<Application> app_;
+  bool perturbed_first_ = false;  // IpoptSettings::perturbed_first
   bool warm_start_ = false;  // the configured warm_start_init_point (Ipopt's default: no)
   // The configured barrier options, restored after a solve with a BarrierStage.
   std::string mu_strategy_;

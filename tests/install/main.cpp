@@ -48,7 +48,7 @@ int main() {
   p.finalize();
 
   const disco::Settings settings = disco::Settings::load(DISCO_SETTINGS);
-  disco::IpoptSolver ipopt(disco::ipopt_options(settings));
+  disco::IpoptSolver ipopt(disco::ipopt_settings(settings));
   const disco::ElasticSolver solver(ipopt, disco::elastic_settings(settings));
   const disco::MpccResult r = solver.solve(p, p.initial_point());
 
