@@ -50,27 +50,49 @@ struct Reduction {
   double elapsed() const {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
-  // An interrupt (core/util/interrupt.h) ends the loop as the time limit does.
   bool out_of_time() const {
-    return interrupt_requested() || (cfg.time_limit > 0 && elapsed() > cfg.time_limit);
+    return time_up || interrupt_requested() || (cfg.time_limit > 0 && elapsed() > cfg.time_limit);
   }
-  ElasticRequest request(int iteration_limit) const {
+  // An interrupt (core/util/interrupt.h) ends the loop as the time limit does; so does a solve
+  // cut at its deadline (salvaged or not), whose deadline kept back only the salvage's time.
+  bool time_up = false;
+  // Seconds kept back from the time limit for a salvage: salvage_iterations at the start's
+  // pace so far, at most half the time left; 0 before the first iteration or without salvage.
+  double salvage_reserve() const {
+    if (cfg.salvage_iterations <= 0 || cfg.time_limit <= 0 || out.iterations <= 0) return 0.0;
+    const double pace = elapsed() / out.iterations;
+    return std::min(cfg.salvage_iterations * pace, 0.5 * std::max(0.0, cfg.time_limit - elapsed()));
+  }
+  // Every solve ends by the time limit, less `reserve` seconds.
+  ElasticRequest request(int iteration_limit, double reserve = 0.0) const {
     ElasticRequest r{iteration_limit, std::nullopt};
-    if (cfg.time_limit > 0)  // every solve ends by the time limit
+    if (cfg.time_limit > 0)
       r.deadline = t0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                            std::chrono::duration<double>(cfg.time_limit));
+                            std::chrono::duration<double>(cfg.time_limit - reserve));
     return r;
   }
-  // The elastic MPCC under the request's bound, from a point or a result (warm).
+  // The elastic MPCC under the request's bound, from a point or a result (warm). Past the
+  // feasibility phase it ends early enough for a salvage (salvage_reserve).
   template <class From>
   MpccResult step(const StepRequest& q, const From& from) {
+    const double reserve = q.bound == Bound::kHorizon ? 0.0 : salvage_reserve();
     if (q.bound == Bound::kHorizon) {
       problem.free_objective();
       problem.fix_horizon(q.value);
     } else {
       problem.bound_objective(q.value, q.bound == Bound::kFixed);
     }
-    return solver.solve(problem.program(), from, request(q.iteration_limit));
+    MpccResult r = solver.solve(problem.program(), from, request(q.iteration_limit, reserve));
+    if (r.outcome == NlpOutcome::kTimeLimit) time_up = true;
+    return r;
+  }
+  // Salvage (objective_reduction.h): after `cut` (a step or minimisation the time limit cut
+  // short, recorded), its branch minimised under T_f <= T_best, by the limit itself.
+  void salvage(const MpccResult& cut) {
+    if (cut.outcome != NlpOutcome::kTimeLimit || cut.solved() || cfg.salvage_iterations <= 0 ||
+        interrupt_requested() || cut.elastic_point.z.size() == 0)
+      return;
+    branch(cut, SolveKind::kSalvage, 0, cfg.salvage_iterations);
   }
   void record(SolveKind kind, double bound, const MpccResult& r, bool improved) {
     SolveRecord rec{kind,     bound,        problem.horizon(r.z), problem.objective(r.z),
@@ -111,20 +133,25 @@ struct Reduction {
     record(SolveKind::kMinimize, bound, r, improved);
     const bool converged = r.solved();
     if (improved) take_best(std::move(r), converged, bound);
+    else salvage(r);
     return converged;
   }
 
-  // A branch descent from `from` (certified or not) under T_f <= T_best; true if it improved.
-  bool branch(const MpccResult& from) {
+  // A branch descent from `from` (certified or not) under T_f <= T_best, with at most
+  // flip_rounds flips and iteration_limit Ipopt iterations per solve (0: none); true if it
+  // improved. A salvage's point is not stationary for the loop (its solve was not asked to
+  // be: it ends by the limit).
+  bool branch(const MpccResult& from, SolveKind kind, int flip_rounds, int iteration_limit = 0) {
     const double bound = out.best_value;
     problem.bound_objective(bound, false);
-    MpccResult r =
-        solver.solve_branch(problem.program(), from, cfg.flip_rounds, request(0));
+    MpccResult r = solver.solve_branch(problem.program(), from, flip_rounds,
+                                       request(iteration_limit));
     const bool improved = r.solved() && problem.objective(r.z) < bound * (1.0 - kBetter);
-    record(SolveKind::kBranch, bound, r, improved);
-    if (improved) take_best(std::move(r), r.b_stationary, bound);
+    record(kind, bound, r, improved);
+    if (improved) take_best(std::move(r), kind == SolveKind::kBranch && r.b_stationary, bound);
     return improved;
   }
+  bool branch(const MpccResult& from) { return branch(from, SolveKind::kBranch, cfg.flip_rounds); }
   // One segment of the elastic minimisation: at most step_iterations Ipopt iterations from
   // `from` under T_f <= bound; the second member says whether it gave a new best.
   std::pair<MpccResult, bool> segment(const MpccResult& from, double bound) {
@@ -143,6 +170,7 @@ struct Reduction {
     {
       auto [r, improved] = segment(out.best, out.best_value);
       if (!out_of_time()) branch(r);
+      else salvage(r);
       if (r.solved()) return;
     }
     // b. More segments, the first from the best branch point, each continuing the last (its
@@ -157,6 +185,7 @@ struct Reduction {
       auto [r, better] = segment(from, T_from);
       T_from = problem.objective(r.z);
       if (!out_of_time() && T_from < out.best_value) better = branch(r) || better;
+      else salvage(r);
       // A segment that converged (certified) is a local optimum of the elastic program.
       if (r.solved() || r.status == MpccStatus::kInfeasible) break;
       // Not tight: raising zeta no longer moves it, and the next segment starts where it ended.
@@ -185,6 +214,7 @@ std::string to_string(SolveKind kind) {
     case SolveKind::kFixedStep: return "fixed step";
     case SolveKind::kMinimize: return "minimize";
     case SolveKind::kBranch: return "branch";
+    case SolveKind::kSalvage: return "salvage";
   }
   return "?";
 }
@@ -308,6 +338,7 @@ ReductionResult reduce_objective(RobotProblem& problem, const ElasticSolver& sol
         o.inside_bound = T_f < bound * (1.0 - kInsideBound);
         run.record(s.phase, bound, r, o.improved);
         if (o.improved) run.take_best(std::move(r), s.phase == Phase::kMinimizingStep, bound);
+        else run.salvage(r);
         break;
       }
       case Phase::kEarlyMinimize:  // 3. from the best point to its local optimum

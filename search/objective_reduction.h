@@ -73,6 +73,16 @@
 // and sets T_max to RobotProblem::horizon_reach (time + energy: a better point may be slower),
 // step 1b runs for time and time + energy only, and no step is asked below
 // RobotProblem::objective_floor().
+// Salvage (reduction.salvage_iterations > 0, under a time limit). A step or minimisation that
+//   the limit cuts short ends at a point that is not certified: without more, its progress is
+//   lost (on paper B1 the minimisation after the fixed steps runs 70 s; a 60 s search kept the
+//   last fixed step's T_f). So every solve after the feasibility phase ends that much earlier
+//   than the limit: salvage_iterations Ipopt iterations at the start's own pace so far (its
+//   seconds per iteration), at most half the time left. A solve cut there is salvaged: from
+//   its point, the branch NLP (the smaller side of every pair fixed at 0, as polish does,
+//   without flips) minimises T_f <= T_best in at most salvage_iterations iterations, by the
+//   limit itself; certified and below the best, its point becomes the best (not stationary:
+//   "feasible"). The loop then ends, out of time. An interrupt is not salvaged.
 // The control flow above is search/reduction_phases.h: named phases and one transition
 // function; reduce_objective runs each phase's solve, passing the elastic solver its limits
 // (iteration cap, the time limit's deadline) as an ElasticRequest.
@@ -97,8 +107,13 @@ namespace disco {
 // What an elastic-mode solve of the reduction is (the solve log's "phase" column):
 // step 1, step 1b, a minimising step of step 2, a fixed step (or the probe below a local
 // optimum), a minimisation (step 3, or a segment of the kBranch minimiser), a branch descent.
-enum class SolveKind { kFeasibility, kPerturbedFeasibility, kReduction, kFixedStep, kMinimize, kBranch };
-// "feasibility", "perturbed feasibility", "reduction", "fixed step", "minimize", "branch".
+// A salvage: the branch solve from the point of a step or minimisation that the time limit cut
+// short (below, "Salvage").
+enum class SolveKind {
+  kFeasibility, kPerturbedFeasibility, kReduction, kFixedStep, kMinimize, kBranch, kSalvage
+};
+// "feasibility", "perturbed feasibility", "reduction", "fixed step", "minimize", "branch",
+// "salvage".
 std::string to_string(SolveKind kind);
 
 // One elastic-mode solve (possibly several Ipopt solves inside), as the solve log shows it.

@@ -546,6 +546,67 @@ TEST(ObjectiveReductionIncumbent, WithJumpsTheFirstStepAimsBelowTheIncumbent) {
   EXPECT_TRUE(r.best_value < incumbent || r.stop == StopReason::kDominated) << r.best_value;
 }
 
+// Salvage (objective_reduction.h): a time limit that falls among the steps after the feasible
+// point cuts a solve short; its point is salvaged by a branch solve that ends by the limit, and
+// only a certified point is ever the best. The limit is placed from a first run without one:
+// past the feasibility phase (with room to spare), halfway through the rest.
+TEST(ObjectiveReductionSalvage, ASolveCutByTheTimeLimitIsSalvagedOnItsBranch) {
+  RobotProblem problem(scenario("paper/B1", {"steps=20"}));
+  DefaultSolvers d;
+  ASSERT_GT(d.schedule.salvage_iterations, 0) << "configs/disco.yaml salvages";
+  const ReductionResult full = reduce_objective(problem, d.solver, d.schedule);
+  ASSERT_TRUE(full.found);
+  const double feasibility = full.solves.front().seconds;
+  const double limit = feasibility + 0.5 * (full.seconds - feasibility);
+  std::printf("  without a limit: feasibility %.2f s, all %.2f s; limit %.2f s\n", feasibility,
+              full.seconds, limit);
+  ASSERT_GT(full.seconds - feasibility, 2.0 * feasibility) << "room after the feasibility phase";
+
+  ReductionSettings cut = d.schedule;
+  cut.time_limit = limit;
+  const ReductionResult result = reduce_objective(problem, d.solver, cut);
+  print(result);
+  ASSERT_TRUE(result.found);
+  EXPECT_EQ(result.stop, StopReason::kOutOfTime);
+  // Past the limit by at most one iteration's and one certificate's time.
+  EXPECT_LE(result.seconds, limit + 1.0);
+  int salvages = 0;
+  for (size_t k = 0; k < result.solves.size(); ++k) {
+    const SolveRecord& r = result.solves[k];
+    if (r.kind == SolveKind::kSalvage) {
+      ++salvages;
+      ASSERT_GT(k, 0u);
+      EXPECT_EQ(result.solves[k - 1].outcome, NlpOutcome::kTimeLimit) << "only a cut solve is salvaged";
+      EXPECT_LE(r.iterations, d.schedule.salvage_iterations * r.nlp_solves);
+      EXPECT_EQ(k + 1, result.solves.size()) << "a salvage ends the loop";
+      if (r.improved) {
+        EXPECT_EQ(r.status, MpccStatus::kSolved);
+        EXPECT_EQ(result.best_value, r.value);
+        EXPECT_EQ(result.stationarity, Stationarity::kFeasible) << "a salvage is not a minimum";
+      }
+    } else if (r.outcome == NlpOutcome::kTimeLimit && k > 0) {
+      ASSERT_LT(k + 1, result.solves.size()) << "a cut solve is followed by its salvage";
+      EXPECT_EQ(result.solves[k + 1].kind, SolveKind::kSalvage);
+    }
+  }
+  EXPECT_EQ(salvages, 1) << "the limit falls among the steps, so one solve is cut";
+  // The best is the best certified record, and it is certified on the MPCC.
+  double best = kInf;
+  for (const SolveRecord& r : result.solves)
+    if (r.improved) best = std::min(best, r.value);
+  EXPECT_EQ(result.best_value, best);
+  EXPECT_TRUE(result.best.certificate.within(d.solver.settings().violation_tol,
+                                             d.solver.settings().complementarity_tol));
+
+  // salvage_iterations 0: nothing is salvaged, and a solve the limit cuts is lost.
+  cut.salvage_iterations = 0;
+  const ReductionResult lost = reduce_objective(problem, d.solver, cut);
+  ASSERT_TRUE(lost.found);
+  EXPECT_EQ(count_kind(lost, SolveKind::kSalvage), 0);
+  for (const SolveRecord& r : lost.solves)
+    if (r.outcome == NlpOutcome::kTimeLimit) EXPECT_FALSE(r.improved);
+}
+
 TEST(ObjectiveReduction, AnUnknownMinimizerIsAnErrorNamingTheKey) {
   Settings settings = Settings::load(default_settings_path());
   settings.apply_override("reduction.minimize=fast");

@@ -143,6 +143,7 @@ ReductionSettings reduction_settings(const Settings& s) {
                                   {{"elastic", Minimizer::kElastic}, {"branch", Minimizer::kBranch}});
   r.flip_rounds = integer_at_least(s, "reduction.flip_rounds", 0);
   r.time_limit = non_negative(s, "reduction.time_limit");
+  r.salvage_iterations = integer_at_least(s, "reduction.salvage_iterations", 0);
   r.jump_to_incumbent = s.boolean("reduction.jump_to_incumbent");
   r.dominated_after = integer_at_least(s, "reduction.dominated_after", 0);
   return r;

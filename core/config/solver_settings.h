@@ -51,6 +51,10 @@ struct ReductionSettings {
   int minimize_iterations = 0;  // kElastic: cap on the early minimisation (step 3); 0 = none
   int flip_rounds = 0;      // kBranch: at most this many rounds of flips per branch descent
   double time_limit = 0.0;  // s; 0 = none
+  // Under a time limit: a step or minimisation cut by it has its point polished on its branch
+  // in at most this many Ipopt iterations, in time kept back for it (search/objective_reduction.h,
+  // "Salvage"); 0 = none.
+  int salvage_iterations = 0;
   // The shared incumbent (search/reduction_phases.h): steps aim below (1 - r) min(T_best,
   // incumbent); a start whose best stays above the incumbent for dominated_after steps in a
   // row stops, dominated (0 = never).
