@@ -109,7 +109,9 @@ void Coordinator::record(StartOutcome o, const json* solution) {
   const double now = seconds();
   o.finished_s = now;
   const int s = scene_index(o.scene);
-  if (s >= 0) queue_.finished(s, o.start);
+  if (s >= 0)
+    queue_.finished(s, o.start,
+                    o.status == StartStatus::kTimeLimit ? o.budget_source : BudgetSource::kNone);
   record_.record(o, solution, now, s >= 0 ? queue_.scene_started(s) : 0.0);
   if (o.certified()) lower_incumbent(s, o.value);
   record_.write_best(queue_, now, interrupt_requested());

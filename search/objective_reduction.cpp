@@ -54,7 +54,8 @@ struct Reduction {
     return time_up || interrupt_requested() || (cfg.time_limit > 0 && elapsed() > cfg.time_limit);
   }
   // An interrupt (core/util/interrupt.h) ends the loop as the time limit does; so does a solve
-  // cut at its deadline (salvaged or not), whose deadline kept back only the salvage's time.
+  // cut at its deadline (salvaged or not), whose deadline kept back only the salvage's time,
+  // and the loop's stop reason is then the time limit.
   bool time_up = false;
   // Seconds kept back from the time limit for a salvage: salvage_iterations at the start's
   // pace so far, at most half the time left; 0 before the first iteration or without salvage.
@@ -82,14 +83,23 @@ struct Reduction {
     } else {
       problem.bound_objective(q.value, q.bound == Bound::kFixed);
     }
-    MpccResult r = solver.solve(problem.program(), from, request(q.iteration_limit, reserve));
-    if (r.outcome == NlpOutcome::kTimeLimit) time_up = true;
+    const ElasticRequest req = request(q.iteration_limit, reserve);
+    MpccResult r = solver.solve(problem.program(), from, req);
+    note_deadline(req, r);
     return r;
+  }
+  // A solve whose deadline passed ends the loop on the clock: Ipopt cut at it, or the elastic
+  // solver past it skipped a polish or a zeta raise (so the point is not what the same solve
+  // without a deadline gives, and the start's path is no longer its own).
+  void note_deadline(const ElasticRequest& req, const MpccResult& r) {
+    if (r.outcome == NlpOutcome::kTimeLimit ||
+        (req.deadline && std::chrono::steady_clock::now() >= *req.deadline))
+      time_up = true;
   }
   // Salvage (objective_reduction.h): after `cut` (a step or minimisation the time limit cut
   // short, recorded), its branch minimised under T_f <= T_best, by the limit itself.
   void salvage(const MpccResult& cut) {
-    if (cut.outcome != NlpOutcome::kTimeLimit || cut.solved() || cfg.salvage_iterations <= 0 ||
+    if (!time_up || cut.solved() || cfg.salvage_iterations <= 0 ||
         interrupt_requested() || cut.elastic_point.z.size() == 0)
       return;
     branch(cut, SolveKind::kSalvage, 0, cfg.salvage_iterations);
@@ -144,8 +154,9 @@ struct Reduction {
   bool branch(const MpccResult& from, SolveKind kind, int flip_rounds, int iteration_limit = 0) {
     const double bound = out.best_value;
     problem.bound_objective(bound, false);
-    MpccResult r = solver.solve_branch(problem.program(), from, flip_rounds,
-                                       request(iteration_limit));
+    const ElasticRequest req = request(iteration_limit);
+    MpccResult r = solver.solve_branch(problem.program(), from, flip_rounds, req);
+    note_deadline(req, r);
     const bool improved = r.solved() && problem.objective(r.z) < bound * (1.0 - kBetter);
     record(kind, bound, r, improved);
     if (improved) take_best(std::move(r), kind == SolveKind::kBranch && r.b_stationary, bound);
@@ -354,8 +365,10 @@ ReductionResult reduce_objective(RobotProblem& problem, const ElasticSolver& sol
   // Free the objective again: the problem is the model itself for later users.
   problem.free_objective();
   if (out.found) out.status = MpccStatus::kSolved;
-  out.stop = s.stop == StopReason::kOutOfTime && interrupt_requested() ? StopReason::kInterrupted
-                                                                       : s.stop;
+  // A solve the time limit cut short ends the loop on the clock, also where it was the loop's
+  // last (the final minimisation, cut and salvaged): the start did not reach its own end.
+  const StopReason stop = run.time_up ? StopReason::kOutOfTime : s.stop;
+  out.stop = stop == StopReason::kOutOfTime && interrupt_requested() ? StopReason::kInterrupted : stop;
   out.incumbent = o.incumbent;
   out.seconds = run.elapsed();
   return out;

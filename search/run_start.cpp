@@ -172,7 +172,11 @@ StartOutcome run_start(const Scene& scene, const Settings& settings, const Start
       out.status = StartStatus::kInterrupted;
     } else if (r.found && r.stop == StopReason::kDominated) {
       out.status = StartStatus::kDominated;
-    } else if (time_budget_s > 0 && r.seconds >= time_budget_s) {
+    } else if (const bool budget_limits = time_budget_s > 0 && !(start.schedule.time_limit > 0 &&
+                                                                  start.schedule.time_limit < time_budget_s);
+               budget_limits && (r.stop == StopReason::kOutOfTime || r.seconds >= time_budget_s)) {
+      // The budget set the loop's limit, and the loop stopped on it: its last solve may have
+      // ended before the budget, keeping back time for a salvage (reduction.salvage_iterations).
       out.status = StartStatus::kTimeLimit;
     }
     if (!r.found) run.info.detail = out.detail;

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 
 #include "core/model/lower_bound.h"
@@ -28,6 +29,9 @@ SearchRecord::SearchRecord(const SearchPlan& plan, const std::string& out_dir, s
                            bool resumed, bool shared)
     : plan_(plan), out_(out_dir), seed_(seed), shared_(shared), best_(plan.scenes.size()) {
   const std::string runs = out_dir + "/runs.jsonl";
+  std::error_code ec;
+  std::filesystem::create_directories(out_dir + "/best/.final", ec);
+  if (ec) throw InputError(out_dir + "/best/.final: cannot create the directory (" + ec.message() + ")");
   if (resumed) read_earlier(runs, seed);
   finished_ = static_cast<int>(done_.size());
   runs_ = std::fopen(runs.c_str(), resumed ? "a" : "w");
@@ -52,10 +56,23 @@ void SearchRecord::record(const StartOutcome& o, const json* solution, double no
   // The solution first, then the line: a kill between the two leaves a best/SCENE.json whose
   // provenance.run is missing from runs.jsonl, and --resume appends it (read_earlier). The
   // other order would leave a recorded best without its file.
-  if (update(s, o, now, scene_started) && solution != nullptr) {
+  const Standing st = update(s, o, now, scene_started);
+  if (solution != nullptr && (st.best || st.final_best)) {
     json doc = *solution;
     doc["provenance"]["run"] = line;
-    write_json_file(best_file(o.scene), doc);
+    if (st.final_best) write_json_file(final_file(o.scene), doc);
+    if (st.best) write_json_file(best_file(o.scene), doc);
+  }
+  if (st.back_to_final) {
+    std::ifstream in(final_file(o.scene));
+    const json doc = in ? json::parse(in, nullptr, false) : json();
+    if (doc.is_object()) {
+      write_json_file(best_file(o.scene), doc);
+    } else {
+      spdlog::warn("{}: start {} ended above its earlier best, and {} (the best final start's "
+                   "file) cannot be read, so best/{}.json still holds start {}'s earlier point",
+                   o.scene, o.start, final_file(o.scene), o.scene, o.start);
+    }
   }
   append(line.dump());
   if (s >= 0 && is_final(o, plan_.scenes[s])) {
@@ -67,6 +84,9 @@ void SearchRecord::record(const StartOutcome& o, const json* solution, double no
 }
 
 std::string SearchRecord::best_file(const std::string& scene) const { return out_ + "/best/" + scene + ".json"; }
+std::string SearchRecord::final_file(const std::string& scene) const {
+  return out_ + "/best/.final/" + scene + ".json";
+}
 
 void SearchRecord::append(const std::string& line) {
   std::fputs((line + "\n").c_str(), runs_);
@@ -75,22 +95,29 @@ void SearchRecord::append(const std::string& line) {
 }
 
 // Keeps `o` as its start's outcome (it replaces an earlier one: a start cut short and run
-// again), recounts the scene, and returns whether `o` is now the scene's best.
-bool SearchRecord::update(int s, const StartOutcome& o, double now, double scene_started) {
-  if (s < 0) return false;
+// again), recounts the scene, and says where `o` now stands (Standing).
+SearchRecord::Standing SearchRecord::update(int s, const StartOutcome& o, double now,
+                                            double scene_started) {
+  if (s < 0) return {};
   Best& b = best_[s];
   b.last_s = now;
   outcomes_[{s, o.start}] = o;
   b.run = b.solved = b.cut_short = 0;
+  // The least J, ties to the lower start (map order): of all outcomes, and of the final ones.
   const StartOutcome* least = nullptr;
+  const StartOutcome* least_final = nullptr;
   for (auto it = outcomes_.lower_bound({s, 0}); it != outcomes_.end() && it->first.first == s; ++it) {
     const StartOutcome& x = it->second;
+    const bool is_last = is_final(x, plan_.scenes[s]);
     ++b.run;
-    if (!is_final(x, plan_.scenes[s])) ++b.cut_short;
+    if (!is_last) ++b.cut_short;
     if (!x.certified()) continue;
     ++b.solved;
-    if (least == nullptr || x.value < least->value) least = &x;  // ties: the lower start (map order)
+    if (least == nullptr || x.value < least->value) least = &x;
+    if (is_last && (least_final == nullptr || x.value < least_final->value)) least_final = &x;
   }
+  Standing st;
+  st.final_best = least_final != nullptr && least_final->start == o.start;
   // Scene times count from the hand-out of the scene's first start, to the
   // moment a rank found the point: the start was handed out o.seconds ago
   // and found it its own time_to_first_feasible / time_to_best after that.
@@ -100,17 +127,23 @@ bool SearchRecord::update(int s, const StartOutcome& o, double now, double scene
     if (b.first_feasible_s < 0 || feasible < b.first_feasible_s)
       b.first_feasible_s = std::max(0.0, feasible);
   }
-  if (least == nullptr) return false;
-  if (least->start != o.start && b.start == o.start)  // o replaced the best with a worse point
-    spdlog::warn("{}: start {} ended above its earlier best, so start {} is now the best, but "
-                 "best/{}.json still holds start {}'s earlier point", o.scene, o.start,
-                 least->start, o.scene, o.start);
+  if (least == nullptr) return st;
+  if (least->start != o.start && b.start == o.start) {  // o replaced the best with a worse point
+    if (least == least_final) {
+      st.back_to_final = true;
+    } else {  // a start cut short and not run again yet: its point is in no file
+      spdlog::warn("{}: start {} ended above its earlier best, so start {} is now the best, but "
+                   "best/{}.json still holds start {}'s earlier point", o.scene, o.start,
+                   least->start, o.scene, o.start);
+    }
+  }
   b.start = least->start;
   b.value = least->value;
   b.outcome = *least;
-  if (least->start != o.start || !o.certified()) return false;
+  if (least->start != o.start || !o.certified()) return st;
   b.best_s = std::max(0.0, handed + std::max(0.0, o.time_to_best));
-  return true;
+  st.best = true;
+  return st;
 }
 
 // The starts runs.jsonl holds a final outcome for (--resume skips them). A start's later

@@ -13,6 +13,11 @@
 //                   runs.jsonl line as provenance.run. It is written before that line, so
 //                   a kill between the two leaves the file, and --resume appends the
 //                   missing line from it: a recorded best always has its file.
+//   best/.final/SCENE.json  the same for the best start with a final outcome (not cut
+//                   short), written when it changes. A start cut by a time limit keeps its
+//                   best so far, and with a salvage (reduction.salvage_iterations) that point
+//                   can lie below where the same start ends when --resume runs it again; the
+//                   best then falls back to a final start, whose file is copied from here.
 //
 // The best of a scene is the smallest certified T_f, ties to the lower start index, so the
 // outcome does not depend on which rank ran what. A start's later line replaces its
@@ -63,7 +68,9 @@ class SearchRecord {
 
   // Records `o`, finished at search time `now` (s); its scene's first start was handed out
   // at `scene_started`. Appends its line to runs.jsonl, recounts its scene and, when `o`
-  // is now the scene's best and `solution` is given, writes best/SCENE.json.
+  // is now the scene's best and `solution` is given, writes best/SCENE.json (and
+  // best/.final/SCENE.json when it is the best final outcome); when `o` ran again and ended
+  // above its earlier best, which was the scene's, the best final start's file takes its place.
   void record(const StartOutcome& o, const nlohmann::json* solution, double now, double scene_started);
 
   // Writes best.json (the scenes' hand-out times and limits from `queue`).
@@ -90,11 +97,19 @@ class SearchRecord {
     double first_feasible_s = -1.0, best_s = -1.0;
     double last_s = -1.0;     // search time its last start was recorded
   };
+  // What update() found for the outcome it recorded.
+  struct Standing {
+    bool best = false;        // it is now the scene's best
+    bool final_best = false;  // it is now the scene's best final outcome
+    bool back_to_final = false;  // it replaced the best with a worse point; the best final
+                                 // outcome is the scene's best again
+  };
   int scene_index(const std::string& name) const;
-  bool update(int s, const StartOutcome& o, double now, double scene_started);
+  Standing update(int s, const StartOutcome& o, double now, double scene_started);
   void read_earlier(const std::string& path, std::uint64_t seed);
   void recover_lines(const std::string& path, std::uint64_t seed, const std::set<std::string>& lines);
   std::string best_file(const std::string& scene) const;  // DIR/best/SCENE.json
+  std::string final_file(const std::string& scene) const;  // DIR/best/.final/SCENE.json
   void append(const std::string& line);  // to runs.jsonl, flushed and fsync'ed
 
   const SearchPlan& plan_;

@@ -84,6 +84,12 @@ std::optional<Task> TaskQueue::next(int rank, double now) {
   return std::nullopt;
 }
 
+void TaskQueue::finished(int scene, int start, BudgetSource cut) {
+  running_.erase({scene, start});
+  if (cut == BudgetSource::kSearch) time_limited_ = true;
+  if (cut == BudgetSource::kScene) scenes_[scene].time_limited = true;
+}
+
 void TaskQueue::finish() {
   if (next_ < pending_.size()) time_limited_ = true;
 }

@@ -55,9 +55,10 @@ class TaskQueue {
   // The next task for `rank` at search time `now` (s), or none: every task handed out,
   // or the search's time limit passed. Scenes whose own limit has passed are skipped.
   std::optional<Task> next(int rank, double now);
-  // Task (scene, start) has an outcome: it no longer runs.
-  void finished(int scene, int start) { running_.erase({scene, start}); }
-  // At the end: tasks left undone mean a time limit stopped the search.
+  // Task (scene, start) has an outcome: it no longer runs. `cut`: the limit that cut it short,
+  // if one did (kSearch: the search's time limit was reached; kScene: the scene's).
+  void finished(int scene, int start, BudgetSource cut = BudgetSource::kNone);
+  // At the end: tasks left undone mean a time limit stopped the search (as a start it cut does).
   void finish();
 
   int total() const { return total_; }      // tasks of the plan

@@ -9,7 +9,8 @@ common   without disco: the results file's sections (a run replaces only its own
          full run drops its configuration's partial sections; a partial run never touches the
          full run's section); which options make a run partial; where find_disco() looks, in
          order (build tree, installed layout PREFIX/bin, PATH, --disco first of all); the
-         argument types.
+         argument types; bench_incumbent's measures of one search (time to the target on the
+         scene's clock, the fastest start alone, wasted start time) on made-up runs.
 results  with a real disco: scripts/bench_stress and scripts/bench_examples on one small scene
          each, into scratch results files: the header (command, UTC date, `disco --version`,
          nproc, memory, wall time) and the table; a second run with other options adds its own
@@ -138,6 +139,33 @@ def test_common():
             check(msg in str(e), f"'{text}' is refused: {e}")
 
 
+def test_incumbent_measures():
+    """bench_incumbent's measure() on two made-up starts. Start a was handed out at 0 s and ran
+    10 s, reaching T_f 10.0 at 4 s and 9.0 at 9 s; start b was handed out at 5 s and ran 3 s,
+    reaching 9.05 at 2 s. For the target 9.1: a reaches it at 0 + 9 = 9 s, b at 5 + 2 = 7 s, so
+    the scene's time is 7 s and the fastest start alone took 2 s (b's own clock). With the
+    scene's lowest 9.0 both end within 1 % (below 9.09), so nothing is wasted; with the lowest
+    8.95 (1 % above: 9.0395) b is above and a is not: 3 of 13 s."""
+    from importlib.machinery import SourceFileLoader
+    from importlib.util import module_from_spec, spec_from_loader
+    loader = SourceFileLoader("bench_incumbent", os.path.join(SCRIPTS, "bench_incumbent"))
+    bench = module_from_spec(spec_from_loader(loader.name, loader))
+    loader.exec_module(bench)
+    runs = [{"status": "solved", "T_f": 9.0, "seconds": 10.0, "finished_s": 110.0,
+             "history": [[4.0, 10.0], [9.0, 9.0]]},
+            {"status": "dominated", "T_f": 9.05, "seconds": 3.0, "finished_s": 108.0,
+             "history": [[2.0, 9.05]]}]
+    best = {"scenes": {"s": {"started_s": 100.0, "T_f": 9.0}}}
+    reached, alone, T_best, n, dominated, wasted = bench.measure(runs, best, 9.1, 9.0)
+    check((reached, alone, T_best, n, dominated, wasted) == (7.0, 2.0, 9.0, 2, 1, 0.0),
+          f"measure: time 7, alone 2, best 9.0, 2 starts, 1 dominated, none wasted "
+          f"({reached}, {alone}, {T_best}, {n}, {dominated}, {wasted})")
+    check(abs(bench.measure(runs, best, 9.1, 8.95)[5] - 3.0 / 13.0) < 1e-12,
+          "measure: a start ending more than 1 % above the scene's lowest wastes its time")
+    reached, alone = bench.measure(runs, best, 8.5, 9.0)[:2]
+    check(reached is None and alone is None, f"measure: a target no start reached ({reached}, {alone})")
+
+
 def run_script(name, *args):
     r = subprocess.run([os.path.join(SCRIPTS, name), *args], capture_output=True, text=True)
     return r
@@ -197,6 +225,7 @@ shutil.rmtree(WORK, ignore_errors=True)
 os.makedirs(WORK)
 if MODE == "common":
     test_common()
+    test_incumbent_measures()
 elif MODE == "results":
     test_results(sys.argv[4])
 else:

@@ -16,6 +16,7 @@
 #include "core/util/numbers.h"
 #include "search/coordinator.h"
 #include "search/search_plan.h"
+#include "search/search_record.h"
 #include "search/task_queue.h"
 
 namespace disco {
@@ -55,6 +56,28 @@ TEST(TaskQueue, LargerScenesFirstEveryStartOnceAndDoneStartsSkipped) {
   EXPECT_EQ(q.running().size(), 3u);
   q.finish();
   EXPECT_FALSE(q.time_limited()) << "every task was handed out";
+}
+
+TEST(TaskQueue, AStartCutByALimitMeansThatLimitWasReachedThoughEveryTaskWasHandedOut) {
+  SearchPlan plan;
+  plan.scenes = {job("one_robot_axis", 1, /*scene*/ 10.0), job("two_robots_swap_avoid", 1)};
+  TaskQueue q(plan, /*search*/ 20.0, {});
+  const auto a = q.next(0, 0.0), b = q.next(1, 0.0);
+  ASSERT_TRUE(a && b);
+  EXPECT_FALSE(q.next(0, 1.0)) << "every task is handed out";
+  // The scene's start ends on its own; the other start is cut by the search's limit.
+  q.finished(a->scene, a->start, BudgetSource::kNone);
+  EXPECT_FALSE(q.scene_time_limited(a->scene));
+  EXPECT_FALSE(q.time_limited());
+  q.finished(b->scene, b->start, BudgetSource::kSearch);
+  EXPECT_TRUE(q.time_limited()) << "a start the search's limit cut";
+  // A scene's limit that cuts its start marks that scene, not the search.
+  TaskQueue r(plan, 0.0, {});
+  const auto c = r.next(0, 0.0);
+  ASSERT_TRUE(c);
+  r.finished(c->scene, c->start, BudgetSource::kScene);
+  EXPECT_TRUE(r.scene_time_limited(c->scene));
+  EXPECT_FALSE(r.time_limited());
 }
 
 TEST(TaskQueue, StartsOfAGuessClassAlreadyTriedAreDeferredAfterTheScenesOthers) {
@@ -130,6 +153,58 @@ json outcome_message(const SearchPlan& plan, const Task& task, double T_f) {
     o.max_violation = o.max_complementarity = 1e-9;
   }
   return {{"outcome", o.to_json()}, {"solution", {{"T_f", T_f}}}};
+}
+
+// best/SCENE.json's start (its provenance.run), or -1 without a file.
+int start_in_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) return -1;
+  return json::parse(in).at("provenance").at("run").at("start").get<int>();
+}
+
+TEST(SearchRecord, AStartRunAgainThatEndsAboveItsCutBestHandsTheFileBackToTheBestFinalStart) {
+  // A start cut by the search's time limit keeps its best so far, which a salvage can put
+  // below where the same start ends when --resume runs it again. Start 0 ends at 3.0, start 1
+  // is cut at 2.9 (the best), start 2 ends at 2.95 (the best final start, not the best);
+  // then start 1 runs again and ends at 3.1: start 2 is the best, and its file is best/.
+  SearchPlan plan;
+  plan.scenes = {job("one_robot_axis", 3)};
+  const std::string dir = fresh_dir("record_fallback");
+  SearchRecord record(plan, dir, 1, false, false);
+  auto outcome = [](int start, double T_f, StartStatus status) {
+    StartOutcome o;
+    o.scene = "one_robot_axis";
+    o.start = start;
+    o.seed = 1;
+    o.status = status;
+    o.T_f = o.value = T_f;
+    o.max_violation = o.max_complementarity = 1e-9;
+    if (status == StartStatus::kTimeLimit) {
+      o.budget = 1.0;
+      o.budget_source = BudgetSource::kSearch;
+    }
+    return o;
+  };
+  const std::string best = dir + "/best/one_robot_axis.json";
+  const std::string last = dir + "/best/.final/one_robot_axis.json";
+  auto add = [&](int start, double T_f, StartStatus status) {
+    const json solution = {{"T_f", T_f}, {"start", start}};
+    record.record(outcome(start, T_f, status), &solution, 0.0, 0.0);
+  };
+  add(0, 3.0, StartStatus::kSolved);
+  EXPECT_EQ(start_in_file(best), 0);
+  EXPECT_EQ(start_in_file(last), 0);
+  add(1, 2.9, StartStatus::kTimeLimit);
+  EXPECT_EQ(start_in_file(best), 1) << "a cut start's best counts";
+  EXPECT_EQ(start_in_file(last), 0) << "but it is not final";
+  add(2, 2.95, StartStatus::kSolved);
+  EXPECT_EQ(start_in_file(best), 1);
+  EXPECT_EQ(start_in_file(last), 2);
+  add(1, 3.1, StartStatus::kSolved);
+  EXPECT_EQ(record.best_value(0), 2.95);
+  EXPECT_EQ(start_in_file(best), 2) << "the file follows the best back to a final start";
+  std::ifstream in(best);
+  EXPECT_EQ(json::parse(in).at("T_f"), 2.95);
 }
 
 TEST(Coordinator, AStartsErrorIsRecordedAndTheSearchGoesOnToTheEnd) {
