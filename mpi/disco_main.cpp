@@ -40,6 +40,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <new>
 #include <string>
 #include <vector>
@@ -49,6 +50,7 @@
 #include "core/model/model_size.h"
 #include "core/model/objective.h"
 #include "core/model/scene_yaml.h"
+#include "core/util/clock.h"
 #include "core/util/errors.h"
 #include "core/util/interrupt.h"
 #include "core/util/provenance.h"
@@ -304,6 +306,9 @@ int run_solve(const SolveOptions& o) {
   Settings settings = Settings::load(o.settings);
   for (const auto& s : settings_sets) settings.apply_override(s);
   const Scene scene = load_scene(o.scene, scene_sets);
+  // The solve's time (reduction.time_limit, the seconds it reports) is read on this clock.
+  const std::unique_ptr<TimeSource> time_source = make_time_source(clock_settings(settings));
+  const ScopedTimeSource clock(*time_source);
   const Trajectory guess = o.guess.empty() ? Trajectory{} : read_guess_file(o.guess, scene);
   set_threads(o.threads);
   const std::string out_dir = o.out.empty() ? "out/" + scene.name : o.out;

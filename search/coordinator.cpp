@@ -44,7 +44,7 @@ Coordinator::Coordinator(const SearchPlan& plan, const std::string& out_dir, std
                          const GuessClassFunction& guess_class)
     : plan_(plan),
       share_(share_incumbent),
-      t0_(std::chrono::steady_clock::now()),
+      t0_(Clock::now()),
       record_(plan, out_dir, seed, resumed, share_incumbent),
       queue_(plan, time_limit, record_.done(), guess_class),
       incumbent_(plan.scenes.size(), kInf),
@@ -87,7 +87,7 @@ std::vector<Coordinator::Outgoing> Coordinator::take_outbox() {
 }
 
 double Coordinator::seconds() const {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+  return seconds_since(t0_);
 }
 
 int Coordinator::scene_index(const std::string& name) const {

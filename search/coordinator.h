@@ -23,7 +23,6 @@
 // shared, the incumbent is +inf everywhere and no message is made: each start runs alone.
 #pragma once
 
-#include <chrono>
 #include <cstdint>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -31,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "core/util/clock.h"
 #include "search/run_start.h"
 #include "search/search_plan.h"
 #include "search/search_record.h"
@@ -103,7 +103,7 @@ class Coordinator {
 
   const SearchPlan& plan_;
   const bool share_;
-  std::chrono::steady_clock::time_point t0_;
+  Clock::time_point t0_;
   std::mutex mutex_;
   SearchRecord record_;
   TaskQueue queue_;

@@ -1,7 +1,6 @@
 #include "search/objective_reduction.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <optional>
 #include <utility>
@@ -9,6 +8,7 @@
 #include <spdlog/fmt/fmt.h>
 
 #include "core/model/objective.h"
+#include "core/util/clock.h"
 #include "core/util/interrupt.h"
 #include "core/config/solver_settings.h"
 #include "core/util/check.h"
@@ -45,11 +45,9 @@ struct Reduction {
   const ReductionSettings& cfg;
   ReductionResult& out;
   const SolveCallback& on_solve;
-  std::chrono::steady_clock::time_point t0;
+  Clock::time_point t0;
 
-  double elapsed() const {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  }
+  double elapsed() const { return seconds_since(t0); }
   bool out_of_time() const {
     return time_up || interrupt_requested() || (cfg.time_limit > 0 && elapsed() > cfg.time_limit);
   }
@@ -67,9 +65,7 @@ struct Reduction {
   // Every solve ends by the time limit, less `reserve` seconds.
   ElasticRequest request(int iteration_limit, double reserve = 0.0) const {
     ElasticRequest r{iteration_limit, std::nullopt};
-    if (cfg.time_limit > 0)
-      r.deadline = t0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                            std::chrono::duration<double>(cfg.time_limit - reserve));
+    if (cfg.time_limit > 0) r.deadline = after(t0, cfg.time_limit - reserve);
     return r;
   }
   // The elastic MPCC under the request's bound, from a point or a result (warm). Past the
@@ -93,7 +89,7 @@ struct Reduction {
   // without a deadline gives, and the start's path is no longer its own).
   void note_deadline(const ElasticRequest& req, const MpccResult& r) {
     if (r.outcome == NlpOutcome::kTimeLimit ||
-        (req.deadline && std::chrono::steady_clock::now() >= *req.deadline))
+        (req.deadline && Clock::now() >= *req.deadline))
       time_up = true;
   }
   // Salvage (objective_reduction.h): after `cut` (a step or minimisation the time limit cut
@@ -282,7 +278,7 @@ ReductionResult reduce_objective(RobotProblem& problem, const ElasticSolver& sol
                                  const SolveCallback& on_solve, const PerturbFunction& perturb,
                                  const IncumbentFunction& incumbent) {
   ReductionResult out;
-  Reduction run{problem, solver, cfg, out, on_solve, std::chrono::steady_clock::now()};
+  Reduction run{problem, solver, cfg, out, on_solve, Clock::now()};
 
   // The phases (search/reduction_phases.h): each runs its solve, then asks where to go.
   PhaseOutcome o;  // facts carried from phase to phase (smallest, perturb)

@@ -3,7 +3,7 @@
 #include <spdlog/fmt/chrono.h>
 #include <spdlog/spdlog.h>
 
-#include <chrono>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -12,6 +12,7 @@
 #include <string>
 
 #include "core/model/solution.h"
+#include "core/util/clock.h"
 #include "core/util/errors.h"
 #include "core/util/provenance.h"
 
@@ -139,7 +140,7 @@ json search_manifest(const SearchPlan& plan, const Settings& settings, const Man
                                                          {"sha256", file_sha256(job.guess.source)}}}});
   json values = json::object();
   for (const auto& [k, v] : settings.values()) values[k] = v;
-  const auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  const std::time_t now = calendar_now();
   return {{"format", kFormat},
           {"format_version", 1},
           {"mode", "search"},

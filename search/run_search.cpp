@@ -6,6 +6,7 @@
 #include <condition_variable>
 #include <csignal>
 #include <chrono>
+#include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -16,6 +17,7 @@
 #include "core/model/model_size.h"
 #include "core/model/solution.h"
 #include "core/util/check.h"
+#include "core/util/clock.h"
 #include "core/util/interrupt.h"
 #include "core/util/numbers.h"
 #include "search/coordinator.h"
@@ -157,6 +159,9 @@ int run_search(const SearchOptions& o, Transport& transport) {
   c.share = share_incumbent(c.settings);
   c.schedule = reduction_settings(c.settings);
   c.elastic = elastic_settings(c.settings);
+  // Every time of the search (limits, budgets, the seconds recorded) is read on this clock.
+  const std::unique_ptr<TimeSource> time_source = make_time_source(clock_settings(c.settings));
+  const ScopedTimeSource clock(*time_source);
   IpoptSolver check(ipopt_settings(c.settings));  // bad Ipopt options fail here, on every rank
   c.plan = load_search_plan(o.configs, o.starts, 1, scene_sets);
   attach_guesses(c.plan, o.guesses);

@@ -1,6 +1,5 @@
 #include "search/run_start.h"
 
-#include <chrono>
 #include <cmath>
 #include <exception>
 #include <new>
@@ -10,6 +9,7 @@
 #include "core/config/solver_settings.h"
 #include "core/model/model_size.h"
 #include "core/model/solution.h"
+#include "core/util/clock.h"
 #include "core/util/interrupt.h"
 #include "search/guess.h"
 #include "search/homotopy.h"
@@ -136,7 +136,7 @@ StartOutcome StartOutcome::from_json(const json& j) {
 StartOutcome run_start(const Scene& scene, const Settings& settings, const StartSpec& start,
                        double time_budget_s, BudgetSource budget_source, json* solution,
                        const SolveCallback& on_solve, const IncumbentFunction& incumbent) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = Clock::now();
   StartOutcome out;
   out.scene = scene.name;
   out.start = start.index;
@@ -182,7 +182,7 @@ StartOutcome run_start(const Scene& scene, const Settings& settings, const Start
     if (!r.found) run.info.detail = out.detail;
     out.max_violation = run.info.certificate.max_violation;
     out.max_complementarity = run.info.certificate.max_complementarity;
-    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    out.seconds = seconds_since(t0);
     run.info.wall_s = out.seconds;
     if (solution != nullptr) *solution = solution_json(*run.problem, run.z, run.info);
   } catch (const std::bad_alloc&) {
@@ -197,7 +197,7 @@ StartOutcome run_start(const Scene& scene, const Settings& settings, const Start
     out.status = StartStatus::kError;
     out.detail = "unknown exception";
   }
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.seconds = seconds_since(t0);
   return out;
 }
 

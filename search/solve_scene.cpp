@@ -1,7 +1,6 @@
 #include "search/solve_scene.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <optional>
 
@@ -9,6 +8,7 @@
 
 #include "core/config/solver_settings.h"
 #include "core/model/model_size.h"
+#include "core/util/clock.h"
 #include "search/guess.h"
 #include "search/trajectory.h"
 
@@ -72,7 +72,7 @@ int coarse_steps(const Scene& scene, const ReductionSettings& schedule) {
 SceneSolve solve_scene(const Scene& scene, const Settings& settings, const StartSpec& start,
                        double time_budget_s, const SolveCallback& on_solve,
                        const IncumbentFunction& incumbent) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const auto t0 = Clock::now();
   check_model_size(scene, model_options(settings).adaptive, memory_limit(settings));
   IpoptSolver ipopt(ipopt_settings(settings));
   // The budget caps the reduction, which gives every elastic solve only the time left.
@@ -130,7 +130,7 @@ SceneSolve solve_scene(const Scene& scene, const Settings& settings, const Start
     out.info.certificate = out.result.solves.back().certificate;
     out.info.violations = problem.violations(out.result.last_attempt, start.elastic.violation_tol);
   }
-  out.info.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  out.info.wall_s = seconds_since(t0);
   return out;
 }
 

@@ -6,12 +6,12 @@
 // point, with the default parallel threshold and with every loop forked.
 #include <omp.h>
 
-#include <chrono>
 #include <cstdio>
 #include <random>
 #include <string>
 
 #include "core/elastic/elastic_nlp.h"
+#include "core/util/clock.h"
 #include "core/model/robot_problem.h"
 #include "core/model/scene_yaml.h"
 
@@ -37,13 +37,13 @@ int main(int argc, char** argv) {
               static_cast<int>(hess.size()));
   auto time_it = [&](int threads) {
     omp_set_num_threads(threads);
-    const auto t0 = std::chrono::steady_clock::now();
+    const Stopwatch stopwatch;
     for (int k = 0; k < repeats; ++k) {
       nlp.constraints(z, c);
       nlp.jacobian(z, jac);
       nlp.hessian(z, 1.0, lambda, hess);
     }
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / repeats;
+    return stopwatch.seconds() / repeats;
   };
   for (int threshold : {PolynomialProgram::kDefaultParallelMin, 1}) {
     rp.program().set_parallel_threshold(threshold);

@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
-"""The command line's traps (run by CTest as cli.traps; see tests/CMakeLists.txt).
+"""The command line's traps (run by CTest as cli.traps and cli.clock; see tests/CMakeLists.txt).
 
-  cli_tests.py DISCO SCENES WORKDIR
+  cli_tests.py DISCO SCENES WORKDIR [traps | clock]
 
+clock: on the simulated clock (`clock.kind: iterations`) a time-limited solve gives the same
+point, counts and time twice, and a bad clock key is refused. traps (the default):
 Each check runs disco and looks at its exit status and messages: the scene file may come
 after --set; an unknown command is named, with the closest one; a settings key that is a
 scene key gets the 'scene.' hint, a mistyped one the closest key; --model-only checks every
@@ -23,6 +25,7 @@ import time
 from script_checks import check, finish
 
 DISCO, SCENES, WORK = sys.argv[1:4]
+MODE = sys.argv[4] if len(sys.argv) > 4 else "traps"
 ENV = dict(os.environ, OMP_NUM_THREADS="1")
 AXIS = os.path.join(SCENES, "one_robot_axis.yaml")
 os.makedirs(WORK, exist_ok=True)
@@ -31,6 +34,25 @@ os.makedirs(WORK, exist_ok=True)
 def run(*args):
     return subprocess.run([DISCO, *args], env=ENV, capture_output=True, text=True)
 
+
+if MODE == "clock":
+    # The simulated clock (`clock.kind: iterations`, core/util/clock.h): a time-limited solve
+    # cuts at the same Ipopt iteration every time, so two runs give the same point, counts and
+    # time; a bad clock setting is refused at once, naming the key.
+    clocked = []
+    for k in range(2):
+        out = os.path.join(WORK, f"clock{k}")
+        r = run("solve", AXIS, "--set", "scene.steps=20", "--set", "clock.kind=iterations", "--set",
+                "clock.seconds_per_iteration=0.01", "--set", "reduction.time_limit=0.4", "--out", out)
+        doc = json.load(open(os.path.join(out, "solution.json"))) if r.returncode == 0 else {}
+        clocked.append((repr(doc.get("T_f")), doc.get("timing"), r.stderr.count("time limit")))
+    check(clocked[0] == clocked[1] and clocked[0][2] > 0 and clocked[0][1]["wall_s"] <= 0.4 + 0.01 + 1e-9,
+          f"solve on the simulated clock, reduction.time_limit=0.4: cut, the same point, counts "
+          f"and time twice ({clocked})")
+    r = run("solve", AXIS, "--model-only", "--set", "clock.kind=cpu")
+    check(r.returncode == 2 and "key 'clock.kind': must be 'wall' or 'iterations', got 'cpu'" in r.stderr,
+          f"a bad clock.kind is refused naming the key ({r.stderr.strip()[-200:]!r})")
+    finish("cli_tests clock")
 
 r = run("solve", "--set", "scene.steps=10", AXIS, "--model-only")
 check(r.returncode == 0 and "N_t = 10" in r.stderr,

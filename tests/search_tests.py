@@ -17,10 +17,14 @@ Every mode that compares runs bit for bit (determinism, resume, timelimit, inter
 killrandom) runs --deterministic.
   resume       a 2-rank search killed after its first finished start, then --resume:
                every start exactly once in runs.jsonl, the same best as a clean run.
-  timelimit    --time-limit 3 on one rank: hands out no start after 3 s, ends soon after
-               (starts in flight get only the time left, and are recorded as time_limit
-               with their best so far, the progress line saying so), says so in best.json;
-               then --resume without the limit ends with the runs and best of a clean run.
+  timelimit    on the simulated clock (time = Ipopt iterations), one rank, two starts per
+               scene, a --time-limit halfway through the second start: the first is the clean
+               run's, the second and any handed out after it are cut (time_limit, each budget the time
+               left, ending by one iteration past the limit at most, the progress line saying
+               so), the rest are never handed out, best.json says so; the same limit again gives the same runs; --resume without
+               the limit ends with the runs and best of a clean run. Then on the machine's
+               clock, only what holds at any speed (starts 0 only): a 0.5 s limit ends the run
+               marked cut, and --resume ends with the clean run's runs.
   manifest     OUT/manifest.json: a non-empty OUT is refused without --resume (nothing
                touched) and replaced with --force; --resume refuses a different seed, scene
                set, scene override or setting, naming each difference; a matching --resume
@@ -214,39 +218,58 @@ elif MODE == "resume":
     check({k: v["T_f"] for k, v in best(out)["scenes"].items()} ==
           {k: v["T_f"] for k, v in best(clean)["scenes"].items()}, "resumed best equals the clean run's")
 elif MODE == "timelimit":
+    # On the simulated clock (configs/disco.yaml `clock:`, core/util/clock.h), one rank: the
+    # search's time is its Ipopt iterations, so where a limit falls is a fact of the runs, the
+    # same on any machine at any load. A clean run gives each start's span on that clock (on
+    # one rank, starts run one after another in hand-out order, the order of runs.jsonl); the
+    # limit is put halfway through start K (the second), between two iteration reports.
+    TICK = 0.01
+    SIM = ["--set", "clock.kind=iterations", "--set", f"clock.seconds_per_iteration={TICK}"]
     clean, out = os.path.join(WORK, "clean"), os.path.join(WORK, "timelimit")
-    check(search(clean, 1, *DET) == 0, "clean 1-rank search exits 0")
-    # What is checked needs a start in flight when the limit passes. On a loaded machine a
-    # start can end just before it and the next be refused at it (nothing in flight, nothing
-    # cut): then the search is run again with a later limit, up to three limits.
-    for limit in (3.0, 3.7, 4.4):
-        shutil.rmtree(out, ignore_errors=True)
-        t0 = time.time()
-        r = subprocess.run([DISCO, "search", BENCH, "--seed", "7", "--out", out, "--time-limit", str(limit),
-                            *DET], env=ENV, capture_output=True, text=True)
-        wall = time.time() - t0
-        if os.path.exists(os.path.join(out, "runs.jsonl")) and any(x["status"] == "time_limit" for x in runs(out)):
-            break
-        print(f"note: no start was in flight at the {limit} s limit; again with a later limit")
-    b = best(out)
+    # Two starts per scene: enough to cut one in flight with one before it and others after it.
+    RUN = ["--starts", "2", *DET, *SIM]
+    check(search(clean, 1, *RUN) == 0, "clean 1-rank search exits 0")
+    order = runs(clean)
+    K = 1
+    check(len(order) > K + 1 and order[K]["seconds"] >= 4 * TICK, f"start {K} is long enough to cut inside")
+    handed = order[K - 1]["finished_s"]  # start K's hand-out, on the clock
+    limit = handed + (int(order[K]["seconds"] / TICK / 2) + 0.5) * TICK
+    shutil.rmtree(out, ignore_errors=True)
+    r = subprocess.run([DISCO, "search", BENCH, "--seed", "7", "--out", out, "--time-limit", repr(limit),
+                        *RUN], env=ENV, capture_output=True, text=True)
+    b, rs = best(out), runs(out)
     check(r.returncode in (0, 3), f"time-limited search exits 0 or 3 (got {r.returncode})")
-    check(wall < limit + 10, f"ends soon after the {limit} s limit ({wall:.1f} s)")
     check(b["time_limit_reached"] is True, "best.json says the time limit was reached")
-    check(0 < b["starts_finished"] < b["starts_total"], f"{b['starts_finished']} of {b['starts_total']} starts ran")
-    rs = runs(out)
-    cut = [x for x in rs if x["status"] == "time_limit"]
-    check(len(rs) == b["starts_finished"] + len(cut), "runs.jsonl holds every start that ended or was cut")
-    check(len(cut) >= 1 and all(x["budget"]["set_by"] == "search" and x["budget"]["seconds"] <= limit
-                                for x in cut),
-          f"the start in flight at the limit is recorded as time_limit, set by the search ({len(cut)})")
-    for x in cut:
+    check(K < len(rs) < len(order) and b["starts_finished"] == K,
+          f"the starts before the limit ended, later ones were cut or never handed out "
+          f"({len(rs)} lines, {b['starts_finished']} finished of {b['starts_total']})")
+    check(key_set(rs[:K]) == key_set(order[:K]) and [x["seconds"] for x in rs[:K]] == [x["seconds"] for x in order[:K]],
+          "the starts before the limit: the clean run's, bit for bit")
+    check(len(rs) > K and (rs[K]["scene"], rs[K]["start"]) == (order[K]["scene"], order[K]["start"]),
+          f"start {K} is the one in flight at the limit")
+    # Each start from K on is cut: its budget is the time left at its hand-out (the end of the
+    # start before it; a cut start may end before the limit, keeping time back for its salvage),
+    # set by the search, and it ends by one report past the limit at most.
+    for k in range(K, len(rs)):
+        x, handout = rs[k], rs[k - 1]["finished_s"]
+        check(x["status"] == "time_limit" and x["budget"]["set_by"] == "search" and
+              abs(x["budget"]["seconds"] - (limit - handout)) < 1e-6,
+              f"{x['scene']} start {x['start']}: time_limit, its budget the time left ({x['budget']})")
+        check(handout + x["seconds"] <= limit + TICK + 1e-9,
+              f"{x['scene']} start {x['start']}: ended by one iteration report past the limit at most "
+              f"({handout:.2f} + {x['seconds']:.2f} s, limit {limit:.3f})")
         words = f"{x['scene']} start {x['start']} (rank 0): time limit (search, "
         check(words in r.stderr, f"its progress line says so ({words}...)")
     for scene, sb in b["scenes"].items():
         points = [x["T_f"] for x in rs if x["scene"] == scene and x["T_f"] is not None]
         check(sb["T_f"] == (min(points) if points else None), f"{scene}: best of what ran, cut starts too")
     check("--resume runs them again" in r.stderr, "the last lines say how to finish the cut starts")
-    code = subprocess.run([DISCO, "search", BENCH, "--seed", "7", "--out", out, "--resume", *DET],
+    again = subprocess.run([DISCO, "search", BENCH, "--seed", "7", "--out", out + "_again", "--force",
+                            "--time-limit", repr(limit), *RUN], env=ENV, capture_output=True, text=True)
+    check([(x["scene"], x["start"], x["status"], repr(x["T_f"]), x["seconds"]) for x in runs(out + "_again")] ==
+          [(x["scene"], x["start"], x["status"], repr(x["T_f"]), x["seconds"]) for x in rs],
+          "the same limit again: the same runs, the cut start's point and time included")
+    code = subprocess.run([DISCO, "search", BENCH, "--seed", "7", "--out", out, "--resume", *RUN],
                           env=ENV).returncode
     check(code == 0, "--resume without the limit exits 0")
     check_consistent(out, "resumed")
@@ -254,6 +277,25 @@ elif MODE == "timelimit":
     check({k: (v["T_f"], v.get("start")) for k, v in best(out)["scenes"].items()} ==
           {k: (v["T_f"], v.get("start")) for k, v in best(clean)["scenes"].items()},
           "resumed: the best of the clean run")
+
+    # Under the machine's clock, only what holds at any speed, on each scene's start 0 (the
+    # clean run's own starts 0: a start is the same whatever --starts says): a limit far below
+    # the search's length (0.5 s; those starts run seconds) ends the run, marked cut, and
+    # --resume without the limit ends with the clean run's runs (the clock does not change a
+    # start's path when no limit falls in it).
+    wall = os.path.join(WORK, "timelimit_wall")
+    shutil.rmtree(wall, ignore_errors=True)
+    one = ["--starts", "1", *DET]
+    r = subprocess.run([DISCO, "search", BENCH, "--seed", "7", "--out", wall, "--time-limit", "0.5", *one],
+                       env=ENV, capture_output=True, text=True)
+    check(r.returncode in (0, 3), f"wall clock: the time-limited search exits 0 or 3 (got {r.returncode})")
+    check(best(wall)["time_limit_reached"] is True, "wall clock: best.json says the time limit was reached")
+    code = subprocess.run([DISCO, "search", BENCH, "--seed", "7", "--out", wall, "--resume", *one],
+                          env=ENV).returncode
+    check(code == 0, "wall clock: --resume without the limit exits 0")
+    check_consistent(wall, "wall clock, resumed")
+    check(key_set(latest(runs(wall))) == key_set([x for x in runs(clean) if x["start"] == 0]),
+          "wall clock, resumed: the clean run's starts 0, bit for bit")
 elif MODE == "logging":
     def run(cmd, out):
         shutil.rmtree(out, ignore_errors=True)

@@ -3,14 +3,13 @@
 // the wall-clock limit.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <string>
-#include <thread>
 
 #include "core/ipopt/ipopt_solver.h"
 #include "core/util/check.h"
+#include "core/util/clock.h"
 #include "core/nlp/derivative_checker.h"
 #include "core/nlp/polynomial_program.h"
 #include "core/util/errors.h"
@@ -323,10 +322,10 @@ TEST(IpoptSolverSolve, NanInsideTheSolveIsCaughtAndTheSolveGoesOn) {
   EXPECT_NEAR(r.objective, 1.0, 1e-12);
 }
 
-// The Rosenbrock function with a slow gradient (10 ms per call).
-class SlowRosenbrock : public Nlp {
+// The Rosenbrock function (unconstrained).
+class Rosenbrock : public Nlp {
  public:
-  explicit SlowRosenbrock(int sleep_ms) : sleep_ms_(sleep_ms) {
+  Rosenbrock() {
     z_lo_ = Vector::Constant(2, -kInf);
     z_hi_ = Vector::Constant(2, kInf);
     hess_.add(0, 0);
@@ -340,7 +339,6 @@ class SlowRosenbrock : public Nlp {
     return true;
   }
   bool do_gradient(const ConstVectorRef& x, VectorRef g) const override {
-    if (sleep_ms_ > 0) std::this_thread::sleep_for(std::chrono::milliseconds(sleep_ms_));
     g[0] = -400 * x[0] * (x[1] - x[0] * x[0]) - 2 * (1 - x[0]);
     g[1] = 200 * (x[1] - x[0] * x[0]);
     return true;
@@ -354,32 +352,47 @@ class SlowRosenbrock : public Nlp {
     v[2] = s * 200;
     return true;
   }
-  int sleep_ms_;
 };
 
-TEST(IpoptSolverSolve, WallLimitStopsALongSolve) {
+// A deadline on disco's clock (core/util/clock.h) stops a solve at the first iteration report
+// past it. On a simulated clock of 10 ms per report (iteration 0 is the first), a deadline
+// 55 ms after the solve's start is passed at the sixth report, iteration 5, on any machine.
+TEST(IpoptSolverSolve, ADeadlineStopsTheSolveAtTheFirstIterationPastIt) {
   IpoptSolver solver(disco_yaml_ipopt_options());
   NlpPoint start;
   start.z = (Vector(2) << -1.2, 1.0).finished();
-  // Unlimited (and fast): converges to (1, 1) after a good number of iterations.
-  const NlpResult full = solver.solve(SlowRosenbrock(0), start);
+  IterationTime time(0.01);
+  const ScopedTimeSource clock(time);
+  // Unlimited: converges to (1, 1) after a good number of iterations, one report each.
+  const NlpResult full = solver.solve(Rosenbrock(), start);
   ASSERT_TRUE(full.converged()) << ipopt_status_name(full.ipopt_status);
   EXPECT_NEAR(full.point.z[0], 1.0, 1e-6);
   ASSERT_GE(full.iterations, 15);
-  // With 10 ms per gradient, a 40 ms limit allows only a few iterations.
+  EXPECT_EQ(time.iterations(), full.iterations + 1) << "iteration 0 and one report per iteration";
+  EXPECT_NEAR(full.seconds, 0.01 * (full.iterations + 1), 1e-9) << "a solve's seconds are the clock's";
+
   NlpLimits limits;
-  limits.deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(40);
-  const NlpResult cut = solver.solve(SlowRosenbrock(10), start, limits);
+  limits.deadline = after(Clock::now(), 0.055);
+  const NlpResult cut = solver.solve(Rosenbrock(), start, limits);
   EXPECT_EQ(cut.outcome, NlpOutcome::kTimeLimit) << ipopt_status_name(cut.ipopt_status);
   EXPECT_EQ(ipopt_status_name(cut.ipopt_status), "User_Requested_Stop");
   EXPECT_EQ(describe(cut.outcome, cut.ipopt_status), "time limit");
   EXPECT_FALSE(cut.converged());
-  EXPECT_LT(cut.iterations, full.iterations);
-  EXPECT_LT(cut.seconds, 0.5);
+  EXPECT_EQ(cut.iterations, 5);
+  EXPECT_NEAR(cut.seconds, 0.06, 1e-9);
   EXPECT_EQ(cut.point.z.size(), 2);
-  // The limit is per call: the same solver solves fully afterwards.
-  const NlpResult after = solver.solve(SlowRosenbrock(0), start);
-  EXPECT_TRUE(after.converged());
+  // A deadline exactly on a report is not yet past: the solve goes on to the next one.
+  limits.deadline = after(Clock::now(), 0.05);
+  EXPECT_EQ(solver.solve(Rosenbrock(), start, limits).iterations, 5);
+  // A solve started past its deadline stops at iteration 0.
+  limits.deadline = after(Clock::now(), -1.0);
+  const NlpResult late = solver.solve(Rosenbrock(), start, limits);
+  EXPECT_EQ(late.outcome, NlpOutcome::kTimeLimit);
+  EXPECT_EQ(late.iterations, 0);
+  // The limit is per call: the same solver solves fully afterwards, along the same path.
+  const NlpResult again = solver.solve(Rosenbrock(), start);
+  EXPECT_TRUE(again.converged());
+  EXPECT_EQ(again.iterations, full.iterations);
 }
 
 // Finding (see the report): NlpPoint::has_duals() is lambda.size() > 0, so
@@ -454,12 +467,12 @@ TEST(IpoptSolverSolve, AnIterationCapIsItsOwnOutcome) {
   start.z = (Vector(2) << -1.2, 1.0).finished();
   NlpLimits limits;
   limits.iterations = 3;
-  const NlpResult cut = solver.solve(SlowRosenbrock(0), start, limits);
+  const NlpResult cut = solver.solve(Rosenbrock(), start, limits);
   EXPECT_EQ(cut.outcome, NlpOutcome::kIterationCap) << ipopt_status_name(cut.ipopt_status);
   EXPECT_EQ(cut.iterations, 3);
   EXPECT_FALSE(cut.converged());
   EXPECT_EQ(describe(cut.outcome, cut.ipopt_status), "iteration cap");
-  const NlpResult full = solver.solve(SlowRosenbrock(0), start);
+  const NlpResult full = solver.solve(Rosenbrock(), start);
   EXPECT_EQ(full.outcome, NlpOutcome::kConverged);
   EXPECT_GT(full.iterations, 3);
 }

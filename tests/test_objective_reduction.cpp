@@ -16,6 +16,7 @@
 #include "search/guess.h"
 #include "core/config/settings.h"
 #include "core/config/solver_settings.h"
+#include "core/util/clock.h"
 #include "core/util/errors.h"
 #include "core/model/robot_problem.h"
 #include "core/model/scene_yaml.h"
@@ -546,36 +547,84 @@ TEST(ObjectiveReductionIncumbent, WithJumpsTheFirstStepAimsBelowTheIncumbent) {
   EXPECT_TRUE(r.best_value < incumbent || r.stop == StopReason::kDominated) << r.best_value;
 }
 
-// Salvage (objective_reduction.h): a time limit that falls among the steps after the feasible
-// point cuts a solve short; its point is salvaged by a branch solve that ends by the limit, and
-// only a certified point is ever the best. The limit is placed from a first run without one:
-// past the feasibility phase (with room to spare), halfway through the rest.
+// The solves of `a` and `b` agree (phase, bound, T_f, status, iterations) up to `count`: one
+// start followed the same path.
+void expect_same_path(const ReductionResult& a, const ReductionResult& b, size_t count) {
+  ASSERT_GE(a.solves.size(), count);
+  ASSERT_GE(b.solves.size(), count);
+  for (size_t k = 0; k < count; ++k) {
+    const SolveRecord &x = a.solves[k], &y = b.solves[k];
+    EXPECT_TRUE(x.kind == y.kind && same_bits(x.bound, y.bound) && same_bits(x.T_f, y.T_f) &&
+                x.status == y.status && x.iterations == y.iterations)
+        << "solve " << k + 1 << ": " << to_string(x.kind) << " " << x.T_f << " (" << x.iterations
+        << " it) against " << to_string(y.kind) << " " << y.T_f << " (" << y.iterations << " it)";
+  }
+}
+
+// Time limits on a simulated clock (core/util/clock.h: 10 ms per Ipopt iteration report), so
+// where a limit falls is a fact of the test, not of the machine. A run without a limit gives
+// each solve's span on that clock; the limit is put halfway through the solve that spans the
+// first third of the time after the feasibility phase (solve j), between two of its reports.
+// - Without salvage (reduction.salvage_iterations 0) the limit cuts solve j itself: the solves
+//   before it are the run's own, j ends "time limit" and nothing follows it.
+// - With salvage, every solve after the feasible point ends early enough for one: the cut falls
+//   on a solve among the steps, which is followed by its salvage, a branch solve that ends by
+//   the limit itself; only a certified point is ever the best.
 TEST(ObjectiveReductionSalvage, ASolveCutByTheTimeLimitIsSalvagedOnItsBranch) {
   RobotProblem problem(scenario("paper/B1", {"steps=20"}));
   DefaultSolvers d;
   ASSERT_GT(d.schedule.salvage_iterations, 0) << "configs/disco.yaml salvages";
+  constexpr double kTick = 0.01;  // s per Ipopt iteration report
+  IterationTime time(kTick);
+  const ScopedTimeSource clock(time);
   const ReductionResult full = reduce_objective(problem, d.solver, d.schedule);
   ASSERT_TRUE(full.found);
   const double feasibility = full.solves.front().seconds;
-  const double limit = feasibility + 0.5 * (full.seconds - feasibility);
-  std::printf("  without a limit: feasibility %.2f s, all %.2f s; limit %.2f s\n", feasibility,
-              full.seconds, limit);
   ASSERT_GT(full.seconds - feasibility, 2.0 * feasibility) << "room after the feasibility phase";
+  // Solve j spans the first third of the time after the feasibility phase; it starts at `begin`.
+  const double third = feasibility + (full.seconds - feasibility) / 3.0;
+  size_t j = 0;
+  double begin = 0.0;
+  while (j + 1 < full.solves.size() && begin + full.solves[j].seconds <= third)
+    begin += full.solves[j++].seconds;
+  ASSERT_GT(j, 0u);
+  ASSERT_GE(full.solves[j].iterations, 4) << "a solve long enough to be cut inside";
+  // Between two reports (a limit on a report is passed only at the next one).
+  const double reports = std::round(full.solves[j].seconds / kTick);
+  const double limit = begin + (std::floor(0.5 * reports) + 0.5) * kTick;
+  std::printf("  without a limit: feasibility %.2f s, all %.2f s; limit %.3f s, in solve %zu (%s)\n",
+              feasibility, full.seconds, limit, j + 1, to_string(full.solves[j].kind).c_str());
 
   ReductionSettings cut = d.schedule;
   cut.time_limit = limit;
+  cut.salvage_iterations = 0;
+  const ReductionResult lost = reduce_objective(problem, d.solver, cut);
+  ASSERT_TRUE(lost.found);
+  EXPECT_EQ(lost.stop, StopReason::kOutOfTime);
+  ASSERT_EQ(lost.solves.size(), j + 1) << "the limit cuts solve j, and the loop ends there";
+  expect_same_path(lost, full, j);
+  EXPECT_EQ(lost.solves[j].kind, full.solves[j].kind);
+  EXPECT_EQ(lost.solves[j].outcome, NlpOutcome::kTimeLimit);
+  EXPECT_FALSE(lost.solves[j].improved) << "a cut solve is lost without salvage";
+  EXPECT_EQ(count_kind(lost, SolveKind::kSalvage), 0);
+  // Cut at the first report past the limit.
+  EXPECT_GT(lost.seconds, limit);
+  EXPECT_LE(lost.seconds, limit + kTick + 1e-9);
+
+  cut.salvage_iterations = d.schedule.salvage_iterations;
   const ReductionResult result = reduce_objective(problem, d.solver, cut);
   print(result);
   ASSERT_TRUE(result.found);
   EXPECT_EQ(result.stop, StopReason::kOutOfTime);
-  // Past the limit by at most one iteration's and one certificate's time.
-  EXPECT_LE(result.seconds, limit + 1.0);
+  // The salvage ends by the limit itself: past it by at most one report.
+  EXPECT_LE(result.seconds, limit + kTick + 1e-9);
   int salvages = 0;
   for (size_t k = 0; k < result.solves.size(); ++k) {
     const SolveRecord& r = result.solves[k];
     if (r.kind == SolveKind::kSalvage) {
       ++salvages;
-      ASSERT_GT(k, 0u);
+      ASSERT_GT(k, 1u) << "past the feasibility phase";
+      expect_same_path(result, full, k - 1);  // the start's own path until the cut
       EXPECT_EQ(result.solves[k - 1].outcome, NlpOutcome::kTimeLimit) << "only a cut solve is salvaged";
       EXPECT_LE(r.iterations, d.schedule.salvage_iterations * r.nlp_solves);
       EXPECT_EQ(k + 1, result.solves.size()) << "a salvage ends the loop";
@@ -597,14 +646,6 @@ TEST(ObjectiveReductionSalvage, ASolveCutByTheTimeLimitIsSalvagedOnItsBranch) {
   EXPECT_EQ(result.best_value, best);
   EXPECT_TRUE(result.best.certificate.within(d.solver.settings().violation_tol,
                                              d.solver.settings().complementarity_tol));
-
-  // salvage_iterations 0: nothing is salvaged, and a solve the limit cuts is lost.
-  cut.salvage_iterations = 0;
-  const ReductionResult lost = reduce_objective(problem, d.solver, cut);
-  ASSERT_TRUE(lost.found);
-  EXPECT_EQ(count_kind(lost, SolveKind::kSalvage), 0);
-  for (const SolveRecord& r : lost.solves)
-    if (r.outcome == NlpOutcome::kTimeLimit) EXPECT_FALSE(r.improved);
 }
 
 TEST(ObjectiveReduction, AnUnknownMinimizerIsAnErrorNamingTheKey) {

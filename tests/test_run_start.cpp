@@ -2,17 +2,17 @@
 // a recorded status (search/run_start.h).
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <csignal>
 #include <stdexcept>
-#include <thread>
 #include <cstdio>
 #include <string>
 
 #include "core/config/settings.h"
 #include "core/config/solver_settings.h"
 #include "core/model/scene_yaml.h"
+#include "core/util/clock.h"
 #include "core/util/interrupt.h"
 #include "search/run_start.h"
 
@@ -120,22 +120,33 @@ TEST(RunStart, AStartWithoutASolutionHasAnEmptyHistory) {
   EXPECT_EQ(out.to_json().at("history"), nlohmann::json::array());
 }
 
+Scene contact_scene() {
+  return load_scene(std::string(DISCO_SOURCE_DIR) + "/configs/scenarios/three_robots_contact.yaml");
+}
+
+// Simulated time (core/util/clock.h) at about a real iteration's pace on this scene.
+constexpr double kTick = 0.035;  // s per Ipopt iteration report
+
 TEST(RunStart, ATimeBudgetCapsTheWholeStartAndItsOutcomeSaysSo) {
-  // A start of three_robots_contact runs for tens of seconds unbounded. With a
-  // budget, every elastic solve gets only the time left of the whole start, so
-  // the start ends within the budget plus about one Ipopt iteration (a
-  // generous second here, for a loaded machine), keeps its best point so far
-  // and is recorded as cut short by that budget, not as solved.
+  // A start of three_robots_contact runs for well over a thousand Ipopt iterations unbounded.
+  // With a budget, every elastic solve gets only the time left of the whole start, so on the
+  // simulated clock the start ends at most one report past the budget (its last solve, or the
+  // salvage of a cut one, stops at the first report past it), keeps its best point so far and
+  // is recorded as cut short by that budget, not as solved. 3 s is about 85 reports, before
+  // or around the first feasible point; 7 s about 200, among the steps.
   const Settings settings = Settings::load(default_settings_path());
-  const Scene scene =
-      load_scene(std::string(DISCO_SOURCE_DIR) + "/configs/scenarios/three_robots_contact.yaml");
+  const Scene scene = contact_scene();
   const StartSpec spec = make_start(scene, 1, 0, reduction_settings(settings),
                                     elastic_settings(settings));
   for (double budget : {3.0, 7.0}) {
+    IterationTime time(kTick);
+    const ScopedTimeSource clock(time);
     const StartOutcome out = run_start(scene, settings, spec, budget, BudgetSource::kSearch);
-    std::printf("budget %.0f s: %s T_f %.4f in %.2f s (%s)\n", budget, to_string(out.status).c_str(),
-                out.T_f, out.seconds, out.detail.c_str());
-    EXPECT_LE(out.seconds, budget + 1.0) << out.detail;
+    std::printf("budget %.0f s: %s T_f %.4f in %.3f s, %lld reports (%s)\n", budget,
+                to_string(out.status).c_str(), out.T_f, out.seconds,
+                static_cast<long long>(time.iterations()), out.detail.c_str());
+    EXPECT_LE(out.seconds, budget + kTick + 1e-9) << out.detail;
+    EXPECT_NEAR(out.seconds, kTick * time.iterations(), 1e-9) << "the start's time is the clock's";
     EXPECT_EQ(out.status, StartStatus::kTimeLimit);
     EXPECT_TRUE(out.cut_short());
     EXPECT_EQ(out.budget, budget);
@@ -152,26 +163,42 @@ TEST(RunStart, ATimeBudgetCapsTheWholeStartAndItsOutcomeSaysSo) {
   }
 }
 
+// A simulated clock that requests an interrupt (as SIGINT does through mpi/disco_main.cpp) at
+// its `at`-th iteration report.
+class InterruptingTime : public IterationTime {
+ public:
+  InterruptingTime(double seconds_per_iteration, std::int64_t at)
+      : IterationTime(seconds_per_iteration), at_(at) {}
+  void on_iteration() override {
+    IterationTime::on_iteration();
+    if (iterations() == at_) request_interrupt(SIGINT);
+  }
+
+ private:
+  std::int64_t at_;
+};
+
 TEST(RunStart, AnInterruptStopsTheStartAtOnceAndItIsRecordedAsInterrupted) {
-  // The same long start, interrupted 1.5 s in (as SIGINT does through
-  // mpi/disco_main.cpp): it ends within about one Ipopt iteration of the request.
+  // The same long start, interrupted at its 40th Ipopt iteration report (in its first
+  // feasibility solve): the solve stops at that very report and no Ipopt iteration runs after
+  // it, so the start's time is exactly 40 reports.
   const Settings settings = Settings::load(default_settings_path());
-  const Scene scene =
-      load_scene(std::string(DISCO_SOURCE_DIR) + "/configs/scenarios/three_robots_contact.yaml");
+  const Scene scene = contact_scene();
   const StartSpec spec = make_start(scene, 1, 0, reduction_settings(settings),
                                     elastic_settings(settings));
   clear_interrupt();
-  std::thread interrupter([] {
-    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
-    request_interrupt(SIGINT);
-  });
-  const StartOutcome out = run_start(scene, settings, spec, 0.0, BudgetSource::kNone);
-  interrupter.join();
+  StartOutcome out;
+  {
+    InterruptingTime time(kTick, 40);
+    const ScopedTimeSource clock(time);
+    out = run_start(scene, settings, spec, 0.0, BudgetSource::kNone);
+    EXPECT_EQ(time.iterations(), 40) << "no iteration after the interrupt";
+  }
   EXPECT_TRUE(interrupt_requested());
   EXPECT_EQ(interrupt_signal(), SIGINT);
   clear_interrupt();
   EXPECT_EQ(out.status, StartStatus::kInterrupted) << to_string(out.status) << " " << out.detail;
-  EXPECT_LE(out.seconds, 1.5 + 1.0);
+  EXPECT_NEAR(out.seconds, 40 * kTick, 1e-9);
   EXPECT_EQ(StartOutcome::from_json(out.to_json()).status, StartStatus::kInterrupted);
   // Afterwards solves run again: a short start ends solved.
   const Scene small = small_scene();

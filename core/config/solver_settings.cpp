@@ -152,4 +152,15 @@ ReductionSettings reduction_settings(const Settings& s) {
 bool share_incumbent(const Settings& s) { return s.boolean(kShareIncumbentKey); }
 bool defer_seen_classes(const Settings& s) { return s.boolean("search.defer_seen_classes"); }
 
+ClockSettings clock_settings(const Settings& s) {
+  ClockSettings c;
+  c.kind = choice<ClockKind>(s, "clock.kind",
+                             {{"wall", ClockKind::kWall}, {"iterations", ClockKind::kIterations}});
+  c.seconds_per_iteration = positive(s, "clock.seconds_per_iteration");
+  // The simulated clock counts in nanoseconds: a microsecond is the least step it keeps exact.
+  if (!(c.seconds_per_iteration >= 1e-6 && std::isfinite(c.seconds_per_iteration)))
+    refuse(s, "clock.seconds_per_iteration", "must be finite and at least 1e-6 (seconds)");
+  return c;
+}
+
 }  // namespace disco

@@ -18,6 +18,7 @@
 #include "core/ipopt/ipopt_solver.h"
 #include "core/model/model_plan.h"
 #include "core/model/model_size.h"
+#include "core/util/clock.h"
 #include "core/util/errors.h"
 
 namespace disco {
@@ -78,6 +79,8 @@ bool share_incumbent(const Settings& settings);
 // search.defer_seen_classes: whether a search hands out first the starts whose guess is of a
 // homotopy class no lower start of the scene has (search/task_queue.h).
 bool defer_seen_classes(const Settings& settings);
+// The `clock:` section: where disco reads time (core/util/clock.h).
+ClockSettings clock_settings(const Settings& settings);
 
 // The value of the text key `key` among `choices` (name, value); any other text is an
 // InputError naming the key and listing the names.

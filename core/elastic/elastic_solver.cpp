@@ -1,7 +1,6 @@
 #include "core/elastic/elastic_solver.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include <spdlog/spdlog.h>
@@ -59,7 +58,7 @@ NlpLimits limits(const ElasticRequest& request) {
   return NlpLimits{request.iteration_limit, request.deadline, std::nullopt};
 }
 bool past(const ElasticRequest& request) {
-  return request.deadline && std::chrono::steady_clock::now() >= *request.deadline;
+  return request.deadline && Clock::now() >= *request.deadline;
 }
 // The status of a solve that did not converge.
 MpccStatus unconverged_status(const NlpResult& r) {
@@ -82,7 +81,6 @@ MpccResult ElasticSolver::solve(const Mpcc& mpcc, const MpccResult& warm,
 
 MpccResult ElasticSolver::solve_branch(const Mpcc& mpcc, const MpccResult& from,
                                        int max_flip_rounds, const ElasticRequest& request) const {
-  using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   const int n = mpcc.num_variables();
   const int pairs = mpcc.num_complementarity_pairs();
@@ -164,7 +162,7 @@ MpccResult ElasticSolver::solve_branch(const Mpcc& mpcc, const MpccResult& from,
       break;
     }
   }
-  out.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  out.seconds = seconds_since(t0);
   return out;
 }
 
@@ -257,7 +255,6 @@ bool ElasticSolver::relaxation_homotopy(ElasticNlp& nlp, NlpPoint start, double 
 
 MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta,
                               const ElasticRequest& request) const {
-  using Clock = std::chrono::steady_clock;
   const auto t0 = Clock::now();
   const int n = mpcc.num_variables();
   ElasticNlp nlp(mpcc, settings_.formulation, zeta);
@@ -317,7 +314,7 @@ MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta,
       out.iterations = iters;
     }
   }
-  out.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  out.seconds = seconds_since(t0);
   return out;
 }
 

@@ -6,11 +6,11 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <exception>
 
+#include "core/util/clock.h"
 #include "core/util/interrupt.h"
 #include "core/util/check.h"
 #include "core/util/errors.h"
@@ -20,7 +20,6 @@ namespace {
 
 using Ipopt::Index;
 using Ipopt::Number;
-using Clock = std::chrono::steady_clock;
 
 // The TNLP adapter (shape of Ipopt's hs071 example): forwards every callback
 // to the Nlp's checked public evaluation, which already turns exceptions and
@@ -77,6 +76,7 @@ class TnlpAdapter : public Ipopt::TNLP {
                              Number, Number, Number, Number, Index,
                              const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
     out_.iterations = iter;
+    clock_iteration();  // the simulated clock advances before the deadline is read
     if (error_) return false;  // a callback failed on a bug: stop here
     if (limits_.iterations > 0 && iter >= limits_.iterations) {
       stopped_ = NlpOutcome::kIterationCap;
@@ -320,7 +320,7 @@ NlpResult IpoptSolver::solve(const Nlp& nlp, const NlpPoint& start, const NlpLim
   }
   if (adapter->error()) std::rethrow_exception(adapter->error());  // a bug in a callback
   out.outcome = outcome_of(out.ipopt_status, adapter->stopped());
-  out.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  out.seconds = seconds_since(t0);
   if (out.point.z.size() != nlp.num_variables()) {  // Ipopt gave up before finalize
     out.point = start;
     if (!out.point.has_duals()) {

@@ -14,13 +14,13 @@
 // thread of a process at a time.
 #pragma once
 
-#include <chrono>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "core/nlp/nlp.h"
+#include "core/util/clock.h"
 
 namespace disco {
 
@@ -48,8 +48,6 @@ struct NlpPoint {
   bool has_duals() const { return z_lo.size() > 0; }
 };
 
-using Deadline = std::chrono::steady_clock::time_point;
-
 // One stage of a barrier path: Ipopt's barrier parameter mu starts at mu_init and falls
 // monotonically (mu_strategy monotone) to mu_target, where the solve ends once the barrier
 // problem's optimality error is below max(tol, the configured tol). Used by a homotopy that
@@ -63,7 +61,8 @@ struct BarrierStage {
 // What one solve may spend, and where it stops.
 struct NlpLimits {
   int iterations = 0;               // stop after this many iterations (0: Ipopt's max_iter only)
-  std::optional<Deadline> deadline;  // stop at the first iteration past it (none: no limit);
+  std::optional<Deadline> deadline;  // stop at the first iteration past it on disco's clock
+                                     // (core/util/clock.h; none: no limit);
                                      // an interrupt (core/util/interrupt.h) stops it too
   std::optional<BarrierStage> barrier;  // none: the configured mu strategy, to Ipopt's tol
 };
