@@ -70,6 +70,14 @@ TEST(IpoptSolverOptions, NonIntegerForAnIntegerOptionIsAnInputError) {
   EXPECT_NE(construction_error({"print_level", "-3", "w"}), "");  // below Ipopt's range
 }
 
+// Every time limit is on disco's clock (core/util/clock.h): Ipopt's own CPU-time limit would
+// cut solves outside it.
+TEST(IpoptSolverOptions, IpoptsOwnTimeLimitIsRefusedForDiscosClock) {
+  const std::string msg = construction_error({"max_cpu_time", "10", "--set"});
+  EXPECT_EQ(msg, "--set: key 'ipopt.max_cpu_time': disco's time limits are on its own clock: set "
+                 "reduction.time_limit or --time-limit (clock: in the settings)");
+}
+
 TEST(IpoptSolverOptions, ValidListIsAccepted) {
   EXPECT_NO_THROW(IpoptSolver solver(disco_yaml_ipopt_options()));
   EXPECT_EQ(construction_error({"max_iter", "50", "w"}), "");

@@ -265,6 +265,11 @@ IpoptSolver::IpoptSolver(const std::vector<IpoptOption>& options)
     auto reg = registry->GetOption(o.name);
     if (!Ipopt::IsValid(reg))
       throw InputError(o.where + ": key 'ipopt." + o.name + "': Ipopt has no such option");
+    // Ipopt's CPU-time limit would stop solves on a clock of its own, outside disco's
+    // (core/util/clock.h), where no limit of disco's and no simulated clock could see it.
+    if (o.name == "max_cpu_time")
+      throw InputError(o.where + ": key 'ipopt.max_cpu_time': disco's time limits are on its own "
+                       "clock: set reduction.time_limit or --time-limit (clock: in the settings)");
     bool ok = false;
     switch (reg->Type()) {
       case Ipopt::OT_Number: ok = list->SetNumericValue(o.name, parse_number(o, false)); break;

@@ -11,8 +11,8 @@
 //     configs/disco.yaml; the tests that assert where a limit falls).
 // Ipopt reports each iteration (core/ipopt/ipopt_solver.cpp, the intermediate callback:
 // iteration 0, the starting point, then one per iteration) through clock_iteration() before it
-// checks the solve's deadline. Ipopt's own max_cpu_time is left at Ipopt's default: every
-// limit is on this clock.
+// checks the solve's deadline. Ipopt's own max_cpu_time is refused (core/ipopt/ipopt_solver.cpp):
+// every limit is on this clock.
 //
 // The source is process-wide: install another with ScopedTimeSource (tests, `disco solve`
 // and `disco search` per clock_settings). Reading and reporting are thread-safe (rank 0's
