@@ -78,6 +78,15 @@ TEST(IpoptSolverOptions, IpoptsOwnTimeLimitIsRefusedForDiscosClock) {
                  "reduction.time_limit or --time-limit (clock: in the settings)");
 }
 
+// Every solve factorises through disco's KKT linear solver, which wraps Ipopt's MUMPS interface
+// (core/ipopt/kkt_solver.h): another linear solver is refused, naming the key.
+TEST(IpoptSolverOptions, ALinearSolverOtherThanMumpsIsRefused) {
+  EXPECT_EQ(construction_error({"linear_solver", "ma27", "cfg:4"}),
+            "cfg:4: key 'ipopt.linear_solver': disco factorises through Ipopt's MUMPS interface "
+            "(core/ipopt/kkt_solver.h): it must be 'mumps', got 'ma27'");
+  EXPECT_EQ(construction_error({"linear_solver", "mumps", "w"}), "");
+}
+
 TEST(IpoptSolverOptions, ValidListIsAccepted) {
   EXPECT_NO_THROW(IpoptSolver solver(disco_yaml_ipopt_options()));
   EXPECT_EQ(construction_error({"max_iter", "50", "w"}), "");
@@ -186,6 +195,10 @@ TEST(IpoptSolverSolve, Hs071ReachesItsKnownOptimum) {
   EXPECT_NEAR(r.point.z[2], 3.8211499, 1e-6);
   EXPECT_NEAR(r.point.z[3], 1.3794083, 1e-6);
   EXPECT_GT(r.iterations, 0);
+  // Each iteration factorised through disco's KKT linear solver at least once; nothing was
+  // answered without kkt.perturbed_first (core/ipopt/kkt_solver.h).
+  EXPECT_GE(r.kkt.factorisations, r.iterations);
+  EXPECT_EQ(r.kkt.answered, 0);
   // The duals come back with the right shapes (they warm-start later solves)
   // and Ipopt's sign convention: x1 sits at its lower bound with a positive
   // multiplier; the active inequality c0 >= 25 has a negative multiplier.

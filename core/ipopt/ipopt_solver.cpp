@@ -1,5 +1,5 @@
 #include "core/ipopt/ipopt_solver.h"
-#include "core/ipopt/perturbed_first.h"
+#include "core/ipopt/kkt_solver.h"
 
 #include <IpIpoptApplication.hpp>
 #include <IpTNLP.hpp>
@@ -282,6 +282,19 @@ IpoptSolver::IpoptSolver(const std::vector<IpoptOption>& options)
       throw InputError(o.where + ": key 'ipopt." + o.name + "': Ipopt rejects the value '" +
                        o.value + "'");
   }
+  // Every solve factorises through disco's KKT linear solver (core/ipopt/kkt_solver.h), which
+  // wraps Ipopt's MUMPS interface.
+  std::string linear_solver;
+  list->GetStringValue("linear_solver", linear_solver, "");
+  if (linear_solver != "mumps") {
+    const auto given = std::find_if(options.rbegin(), options.rend(),
+                                    [](const IpoptOption& o) { return o.name == "linear_solver"; });
+    throw InputError((given == options.rend() ? std::string("Ipopt's default") : given->where) +
+                     ": key 'ipopt.linear_solver': disco factorises through "
+                     "Ipopt's MUMPS interface (core/ipopt/kkt_solver.h): it must be 'mumps', got '" +
+                     linear_solver + "'");
+  }
+  list->SetStringValue("linear_solver", kCustomLinearSolver);
   std::string warm;
   list->GetStringValue("warm_start_init_point", warm, "");
   warm_start_ = warm == "yes";
@@ -312,17 +325,8 @@ NlpResult IpoptSolver::solve(const Nlp& nlp, const NlpPoint& start, const NlpLim
   app->Options()->SetNumericValue("tol", std::max(stage.tol, tol_));
   auto* adapter = new TnlpAdapter(nlp, start, out, limits);
   Ipopt::SmartPtr<Ipopt::TNLP> tnlp = adapter;
-  {
-    const bool cold = !(warm_start_ && start.has_duals());
-    PerturbedFirstScope perturbed_first(perturbed_first_, cold);
-    out.ipopt_status = static_cast<int>(app->OptimizeTNLP(tnlp));
-    static bool warned = false;
-    if (perturbed_first_ && !perturbed_first.active() && out.iterations > 0 && !warned) {
-      warned = true;
-      spdlog::warn("kkt.perturbed_first: Ipopt's MUMPS calls do not reach disco's dmumps_c "
-                   "(MUMPS is linked ahead of disco); solving without it");
-    }
-  }
+  const KktOptions kkt{perturbed_first_, !(warm_start_ && start.has_duals())};
+  out.ipopt_status = static_cast<int>(optimize(*app, tnlp, kkt, out.kkt));
   if (adapter->error()) std::rethrow_exception(adapter->error());  // a bug in a callback
   out.outcome = outcome_of(out.ipopt_status, adapter->stopped());
   out.seconds = seconds_since(t0);

@@ -2,7 +2,7 @@
 //
 // IpoptSolver owns one Ipopt application configured from option entries
 // (normally the `ipopt:` section of configs/disco.yaml plus `--set ipopt.*`), and the `kkt:`
-// section's treatment of Ipopt's factorisations (core/ipopt/perturbed_first.h).
+// section's treatment of Ipopt's factorisations (core/ipopt/kkt_solver.h).
 // Each entry is checked against Ipopt's registry when the solver is made: an
 // unknown name or a bad value is an InputError naming where it was given.
 //
@@ -34,7 +34,7 @@ struct IpoptOption {
 struct IpoptSettings {
   std::vector<IpoptOption> options;
   // Start every iteration's factorisation from a Hessian perturbation (Ipopt's
-  // degenerate-Hessian mode) instead of first trying none: core/ipopt/perturbed_first.h.
+  // degenerate-Hessian mode) instead of first trying none: core/ipopt/kkt_solver.h.
   bool perturbed_first = false;
 };
 
@@ -81,6 +81,12 @@ enum class NlpOutcome {
 // "failed".
 std::string to_string(NlpOutcome outcome);
 
+// What the KKT linear solver did in one solve (core/ipopt/kkt_solver.h).
+struct KktCounts {
+  int factorisations = 0;  // numerical factorisations MUMPS ran
+  int answered = 0;        // answered "singular" without factorising (kkt.perturbed_first)
+};
+
 struct NlpResult {
   NlpPoint point;
   double objective = 0.0;
@@ -88,6 +94,7 @@ struct NlpResult {
   int ipopt_status = 0;  // Ipopt::ApplicationReturnStatus, for messages
   int iterations = 0;
   double seconds = 0.0;
+  KktCounts kkt;
   bool converged() const { return outcome == NlpOutcome::kConverged; }
 };
 

@@ -1,0 +1,64 @@
+// disco — the linear solver behind Ipopt's KKT solves, plugged in through Ipopt's own extension
+// point.
+//
+// Every Ipopt solve of disco runs through optimize(): IpoptApplication::OptimizeNLP with an
+// AlgorithmBuilder whose augmented-system solver is StdAugSystemSolver(TSymLinearSolver(S)),
+// Ipopt's option linear_solver "custom": exactly what Ipopt builds for linear_solver mumps without
+// scaling (our `ipopt:` settings), but with S a SparseSymLinearSolverInterface of disco's. S
+// factorises with Ipopt's own MUMPS interface (MumpsSolverInterface: every `mumps_*` option of
+// Ipopt still applies), counts the factorisations, and with KktOptions::perturbed_first answers
+// Ipopt's degeneracy test:
+//
+// Each Ipopt iteration factorises its KKT matrix [W + Σ + δx I, Jᵀ; J, −δc I] and checks its
+// inertia (n positive, m negative eigenvalues). Ipopt 3.11.9 first tries δx = 0 and, when the
+// inertia is wrong, factorises again with δx = max(min_hessian_perturbation,
+// perturb_dec_fact · δ_last), then larger (IpPDPerturbationHandler, IpPDFullSpaceSolver). In an
+// MPCC the bilinear G·H terms make the matrix indefinite at most iterations (76–89 % on the
+// paper's scenes), so most iterations pay for a factorisation that is thrown away: 2.17
+// factorisations per iteration on paper A3's start 0.
+//
+// Ipopt skips the δx = 0 try only once it has classified the Hessian as *structurally
+// degenerate*: when, in its first iterations, the unperturbed matrix is singular three times
+// (its "degeneracy test"); 3.11.9 has no option to ask for that mode. With perturbed_first, S
+// answers SYMSOLVER_SINGULAR, without factorising, to the factorisations Ipopt asks for with
+// δx = 0 in its first three iterations:
+//   - iteration 0: the first two (δx = δc = 0, then δc > 0, δx = 0: Ipopt's order of tests);
+//   - iterations 1 and 2: the first (δx = 0).
+// An iteration's factorisations end with the first that succeeds (MumpsSolverInterface then
+// solves with it). A solve without warm-start duals first factorises once for its least-squares
+// multipliers (Ipopt's constr_mult_init_max): that factorisation is passed through untouched.
+// Ipopt then declares the Hessian degenerate (and the Jacobian not) and from then on starts
+// every iteration's factorisation at δx = max(min_hessian_perturbation, δ_last / 3): one
+// factorisation saved on every iteration whose matrix was indefinite, and a perturbation of at
+// most a third of the last one on those that were not. What Ipopt computes is otherwise
+// unchanged: every answer is still certified by disco (core/elastic/elastic_solver.h).
+//
+// Ipopt's internal classes come from the headers of Debian's source package of the installed
+// Ipopt (scripts/setup; core/README.md, "Ipopt's internals"); only kkt_solver.cpp includes them.
+// S is made anew for every solve (the algorithm is rebuilt per solve), so a solve keeps no state
+// across solves. Not thread-safe, like MUMPS itself: one Ipopt solve at a time per process.
+#pragma once
+
+#include <IpIpoptApplication.hpp>
+#include <IpTNLP.hpp>
+
+#include "core/ipopt/ipopt_solver.h"  // KktCounts
+
+namespace disco {
+
+// How S treats Ipopt's factorisations in one solve.
+struct KktOptions {
+  bool perturbed_first = false;  // answer the degeneracy test (above)
+  bool cold = false;  // the solve starts without warm-start duals: its first factorisation is
+                      // the least-squares multiplier estimate, passed through
+};
+
+// Ipopt's option `linear_solver` while disco's solver is plugged in ("custom").
+inline constexpr const char* kCustomLinearSolver = "custom";
+
+// Solves `tnlp` with `app` (its options set; linear_solver kCustomLinearSolver) through S.
+Ipopt::ApplicationReturnStatus optimize(Ipopt::IpoptApplication& app,
+                                        const Ipopt::SmartPtr<Ipopt::TNLP>& tnlp,
+                                        const KktOptions& options, KktCounts& counts);
+
+}  // namespace disco
