@@ -19,12 +19,13 @@ killrandom) runs --deterministic.
                every start exactly once in runs.jsonl, the same best as a clean run.
   timelimit    on the simulated clock (time = Ipopt iterations), one rank, two starts per
                scene, a --time-limit halfway through the second start: the first is the clean
-               run's, the second and any handed out after it are cut (time_limit, each budget the time
-               left, ending by one iteration past the limit at most, the progress line saying
-               so), the rest are never handed out, best.json says so; the same limit again gives the same runs; --resume without
-               the limit ends with the runs and best of a clean run. Then on the machine's
-               clock, only what holds at any speed (starts 0 only): a 0.5 s limit ends the run
-               marked cut, and --resume ends with the clean run's runs.
+               run's, the second is cut (time_limit, the progress line saying so); every start
+               from the second on has the time left for budget and ends by one iteration past
+               the limit at most; some are never handed out; best.json says so; the same limit
+               again gives the same runs; --resume without the limit ends with the runs and
+               best of a clean run. Then on the machine's clock, only what holds at any speed
+               (starts 0 only): a 0.5 s limit ends the run marked cut, and --resume ends with
+               the clean run's runs.
   manifest     OUT/manifest.json: a non-empty OUT is refused without --resume (nothing
                touched) and replaced with --force; --resume refuses a different seed, scene
                set, scene override or setting, naming each difference; a matching --resume
@@ -240,26 +241,28 @@ elif MODE == "timelimit":
     b, rs = best(out), runs(out)
     check(r.returncode in (0, 3), f"time-limited search exits 0 or 3 (got {r.returncode})")
     check(b["time_limit_reached"] is True, "best.json says the time limit was reached")
-    check(K < len(rs) < len(order) and b["starts_finished"] == K,
-          f"the starts before the limit ended, later ones were cut or never handed out "
-          f"({len(rs)} lines, {b['starts_finished']} finished of {b['starts_total']})")
+    cut = [x for x in rs if x["status"] == "time_limit"]
+    check(K < len(rs) <= len(order) and b["starts_finished"] == len(rs) - len(cut) < len(order),
+          f"the starts before the limit ended, later ones ended, were cut or were never handed out "
+          f"({len(rs)} lines, {len(cut)} cut, {b['starts_finished']} finished of {b['starts_total']})")
     check(key_set(rs[:K]) == key_set(order[:K]) and [x["seconds"] for x in rs[:K]] == [x["seconds"] for x in order[:K]],
           "the starts before the limit: the clean run's, bit for bit")
     check(len(rs) > K and (rs[K]["scene"], rs[K]["start"]) == (order[K]["scene"], order[K]["start"]),
           f"start {K} is the one in flight at the limit")
-    # Each start from K on is cut: its budget is the time left at its hand-out (the end of the
-    # start before it; a cut start may end before the limit, keeping time back for its salvage),
-    # set by the search, and it ends by one report past the limit at most.
+    check(len(rs) > K and rs[K]["status"] == "time_limit", f"start {K} is cut")
+    # Each start from K on has for budget the time left at its hand-out (the end of the start
+    # before it: a cut start may end before the limit, keeping time back for its salvage), set
+    # by the search, and ends by one report past the limit at most; one the limit cut says so.
     for k in range(K, len(rs)):
         x, handout = rs[k], rs[k - 1]["finished_s"]
-        check(x["status"] == "time_limit" and x["budget"]["set_by"] == "search" and
-              abs(x["budget"]["seconds"] - (limit - handout)) < 1e-6,
-              f"{x['scene']} start {x['start']}: time_limit, its budget the time left ({x['budget']})")
+        check(x["budget"]["set_by"] == "search" and abs(x["budget"]["seconds"] - (limit - handout)) < 1e-6,
+              f"{x['scene']} start {x['start']}: its budget is the time left ({x['budget']})")
         check(handout + x["seconds"] <= limit + TICK + 1e-9,
               f"{x['scene']} start {x['start']}: ended by one iteration report past the limit at most "
               f"({handout:.2f} + {x['seconds']:.2f} s, limit {limit:.3f})")
-        words = f"{x['scene']} start {x['start']} (rank 0): time limit (search, "
-        check(words in r.stderr, f"its progress line says so ({words}...)")
+        if x["status"] == "time_limit":
+            words = f"{x['scene']} start {x['start']} (rank 0): time limit (search, "
+            check(words in r.stderr, f"its progress line says so ({words}...)")
     for scene, sb in b["scenes"].items():
         points = [x["T_f"] for x in rs if x["scene"] == scene and x["T_f"] is not None]
         check(sb["T_f"] == (min(points) if points else None), f"{scene}: best of what ran, cut starts too")
