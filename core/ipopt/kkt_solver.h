@@ -25,7 +25,13 @@
 //   - iteration 0: the first two (δx = δc = 0, then δc > 0, δx = 0: Ipopt's order of tests);
 //   - iterations 1 and 2: the first (δx = 0).
 // An iteration's factorisations end with the first that succeeds (MumpsSolverInterface then
-// solves with it). A solve without warm-start duals first factorises once for its least-squares
+// solves with it). The first try MUMPS sees in a solve is factorised all the same (its inertia
+// check made to fail, the answer still "singular"): MUMPS analyses the structure at its first
+// factorisation, and its column permutation (ICNTL(6) 7) reads the values, so the analysis sees
+// the matrix Ipopt's own order of tries gives it, and a solve is the same bit for bit as with
+// Ipopt's own MUMPS path (without that, two_robots_swap_avoid took 412 instead of 621 iterations
+// and push_coin 801 instead of 739: other paths; which analysis serves better is for the start
+// set to measure). A solve without warm-start duals first factorises once for its least-squares
 // multipliers (Ipopt's constr_mult_init_max): that factorisation is passed through untouched.
 // Ipopt then declares the Hessian degenerate (and the Jacobian not) and from then on starts
 // every iteration's factorisation at δx = max(min_hessian_perturbation, δ_last / 3): one
