@@ -1,0 +1,102 @@
+// disco — a sparse symmetric indefinite LDLᵀ for Ipopt's KKT matrices (issue 33).
+//
+// Factorises P (S A S + R) Pᵀ = L D Lᵀ, where
+//   - A is the symmetric matrix as given (one triangle in triplets, repeats summed);
+//   - S = diag(s) is a symmetric Ruiz scaling: `scaling_sweeps` sweeps of s_i ← s_i / √(max_j
+//     |s_i a_ij s_j|), which brings every row's largest entry near 1 (Ipopt's KKT matrices span
+//     1e-3…1e12 on the diagonal; without it the residuals stall at 1e-2);
+//   - R is a static regularisation: a scaled diagonal entry smaller than δ = `regularisation` in
+//     magnitude becomes +δ in the primal block and −δ in the constraint (dual) block, the signs
+//     of a quasi-definite matrix [H + δI, Jᵀ; J, −δI]; a pivot that still falls below δ·1e-6
+//     during the elimination is replaced by ±δ the same way and counted (perturbed());
+//   - P is an approximate minimum degree ordering (Eigen's AMD) of the pattern, computed once per
+//     structure with the elimination tree, the column counts of L and the pattern of every row of
+//     L (analyse()); a factorisation then only moves numbers, in arrays sized once;
+//   - L is unit lower triangular, D diagonal (1×1 pivots only: no pivoting, which is what makes
+//     it fast; the regularisation is what makes it possible).
+//
+// Inertia: the signs of D are the inertia of S A S + R. solve() works on A itself: it solves with
+// the factors and refines iteratively against A (without S or R) until the normwise backward
+// error ‖b − A x‖∞ / (‖A‖∞ ‖x‖∞ + ‖b‖∞) is at most `residual_tolerance` (at most
+// `refinement_steps` steps, fewer when it stalls). Refinement converges only when R is small
+// against A's smallest singular value, and then R does not change the inertia either: a solve
+// that reaches the tolerance vouches for the inertia too. One that does not is reported, and the
+// caller takes that matrix elsewhere (core/ipopt/kkt_solver.h: to MUMPS, counted).
+//
+// Deterministic: the same structure and values give the same bits. Not thread-safe (one object,
+// one thread). Ideas from QDLDL and Davis's LDL (up-looking elimination over the elimination
+// tree), PARDISO (static pivot perturbation plus refinement) and OSQP (quasi-definite
+// regularisation); no code copied.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace disco {
+
+// The kkt.ldlt settings of configs/disco.yaml.
+struct LdltSettings {
+  int scaling_sweeps = 0;           // Ruiz sweeps (0: no scaling)
+  double regularisation = 0.0;      // δ, on the scaled matrix
+  double residual_tolerance = 0.0;  // backward error a solve must reach
+  int refinement_steps = 0;         // at most this many refinement steps per solve
+};
+
+class SparseLdlt {
+ public:
+  // Analyses the structure of an n × n symmetric matrix given as nnz triplets (rows[t], cols[t]),
+  // numbered from `base` (1: Ipopt's triplets), entries of either triangle (an entry and its
+  // mirror may both appear: they are summed). Rows dual_from..n−1 are the constraint block (their
+  // regularisation is negative). Allocates everything the factorisations and solves need.
+  void analyse(int n, int nnz, const int* rows, const int* cols, int base, int dual_from);
+
+  enum class Factorised {
+    kDone,       // L and D computed; inertia() is that of S A S + R
+    kNotFinite,  // a value or a pivot was NaN or infinite: no factors
+    kEmptyRow,   // a row without a nonzero: A is singular (empty_rows() says how many); no factors
+  };
+  // Factorises the matrix with values[t] at triplet t (the analysed structure).
+  Factorised factor(const double* values, const LdltSettings& settings);
+
+  // Solves A x = b in place (b overwritten by x), refining; returns the backward error reached
+  // (above: at most residual_tolerance means the solve is as accurate as asked).
+  double solve(double* b);
+
+  int dimension() const { return n_; }
+  int negative() const { return negative_; }    // negative pivots of the last factorisation
+  int perturbed() const { return perturbed_; }  // pivots replaced by ±δ in it
+  int regularised() const { return regularised_; }  // diagonal entries set to ±δ in it
+  int empty_rows() const { return empty_rows_; }  // rows of A without a nonzero (kEmptyRow)
+  int64_t factor_entries() const { return static_cast<int64_t>(li_.size()); }  // nnz(L), no diagonal
+  double flops() const { return flops_; }  // multiply-adds of one factorisation
+  int last_refinement_steps() const { return refinement_steps_used_; }
+
+ private:
+  void scale();                                  // s_ from ax_
+  void apply_inverse(const double* b, double* x);  // x = S (L D Lᵀ)⁻¹ S b, permuted space
+  void residual(const double* b, const double* x, double* r) const;  // r = b − A x
+
+  int n_ = 0;
+  int dual_from_ = 0;  // in original numbering
+  std::vector<int> order_;     // order_[k]: the original row eliminated k-th
+  std::vector<int> position_;  // position_[i]: when original row i is eliminated
+  // A's upper triangle in the permuted numbering, by columns (merged repeats, every diagonal).
+  std::vector<int> ap_, ai_;
+  std::vector<int> slot_;       // slot_[t]: where triplet t adds into ax_
+  std::vector<int> diagonal_;   // diagonal_[k]: the slot of A(k, k)
+  std::vector<char> dual_;      // dual_[k]: permuted row k is in the constraint block
+  std::vector<double> ax_;      // A's values (unscaled, unregularised)
+  std::vector<double> s_;       // the scaling, permuted numbering
+  std::vector<double> row_norm_;  // |A| row sums, for ‖A‖∞
+  double norm_ = 0.0;             // ‖A‖∞
+  // L by columns: lp_, li_, lx_; and by rows, in the topological order the elimination of row k
+  // visits them: rp_, ri_ (the columns), rslot_ (where L(k, ri) lies in lx_).
+  std::vector<int> lp_, li_, rp_, ri_, rslot_;
+  std::vector<double> lx_, d_, dinv_;
+  std::vector<double> y_, w1_, w2_, w3_;  // work vectors, length n
+  int negative_ = 0, perturbed_ = 0, regularised_ = 0, empty_rows_ = 0, refinement_steps_used_ = 0;
+  double flops_ = 0.0;
+  LdltSettings settings_;
+};
+
+}  // namespace disco

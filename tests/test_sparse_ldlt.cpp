@@ -1,0 +1,201 @@
+// SparseLdlt (core/linalg/sparse_ldlt.h) against dense linear algebra on KKT-shaped matrices
+// [H, Jᵀ; J, −C]: the inertia equals the signs of the eigenvalues, the solution that of a dense
+// LU, the backward error the tolerance; repeated and mirrored triplets are summed; a singular
+// matrix's answer is reported with its real backward error; a NaN is refused; the same values
+// give the same bits.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "core/linalg/sparse_ldlt.h"
+
+namespace disco {
+namespace {
+
+// What configs/disco.yaml's kkt.ldlt holds (the tests do not depend on its values beyond the
+// tolerance they ask for).
+LdltSettings settings() {
+  LdltSettings s;
+  s.scaling_sweeps = 5;
+  s.regularisation = 1e-8;
+  s.residual_tolerance = 1e-12;
+  s.refinement_steps = 5;
+  return s;
+}
+
+// A symmetric matrix in Ipopt's form: lower-triangle triplets, 1-based.
+struct Triplets {
+  int n = 0;
+  std::vector<int> rows, cols;
+  std::vector<double> values;
+  void add(int i, int j, double v) {  // 0-based, any triangle
+    rows.push_back(std::max(i, j) + 1);
+    cols.push_back(std::min(i, j) + 1);
+    values.push_back(v);
+  }
+  Eigen::MatrixXd dense() const {
+    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n);
+    for (size_t t = 0; t < values.size(); ++t) {
+      const int i = rows[t] - 1, j = cols[t] - 1;
+      a(i, j) += values[t];
+      if (i != j) a(j, i) += values[t];
+    }
+    return a;
+  }
+};
+
+// [H, Jᵀ; J, −c I] with H (nx × nx) sparse-ish and indefinite unless `convex`, J (m × nx) full
+// row rank (an identity block plus random entries), both with some repeated entries.
+Triplets kkt(int nx, int m, double c, bool convex, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Triplets t;
+  t.n = nx + m;
+  for (int i = 0; i < nx; ++i) {
+    t.add(i, i, convex ? 2.0 + std::abs(u(rng)) * 1e3 : 3.0 * u(rng));
+    if (i + 1 < nx) t.add(i + 1, i, 0.5 * u(rng));
+    if (i % 3 == 0) t.add(i, i, 0.25);  // a repeat: summed
+  }
+  for (int r = 0; r < m; ++r) {
+    t.add(nx + r, r, 1.0 + std::abs(u(rng)));
+    for (int k = 0; k < 3; ++k) t.add(nx + r, (r * 7 + k * 5 + 3) % nx, u(rng));
+    if (c != 0.0) t.add(nx + r, nx + r, -c);
+  }
+  return t;
+}
+
+int negative_eigenvalues(const Eigen::MatrixXd& a) {
+  const Eigen::VectorXd ev = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(a).eigenvalues();
+  return static_cast<int>((ev.array() < 0).count());
+}
+
+double smallest_singular_value(const Eigen::MatrixXd& a) {
+  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(a).eigenvalues().cwiseAbs().minCoeff();
+}
+
+SparseLdlt analysed(const Triplets& t, int dual_from) {
+  SparseLdlt f;
+  f.analyse(t.n, static_cast<int>(t.values.size()), t.rows.data(), t.cols.data(), 1, dual_from);
+  return f;
+}
+
+TEST(SparseLdlt, KktMatricesGetTheDenseInertiaAndSolution) {
+  int checked = 0;
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    for (double c : {0.0, 1e-6}) {  // δc = 0 leaves the constraint diagonal empty
+      const bool convex = seed % 2 == 0;
+      const Triplets t = kkt(40, 15, c, convex, seed);
+      const Eigen::MatrixXd a = t.dense();
+      // Only matrices whose inertia a perturbation of 1e-6 cannot change say anything.
+      if (smallest_singular_value(a) < 1e-6) continue;
+      SparseLdlt f = analysed(t, 40);
+      ASSERT_EQ(f.factor(t.values.data(), settings()), SparseLdlt::Factorised::kDone);
+      EXPECT_EQ(f.negative(), negative_eigenvalues(a)) << "seed " << seed << " c " << c;
+      if (convex) EXPECT_EQ(f.negative(), 15);  // a quasi-definite KKT matrix: m negative
+      Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(t.n, -1.0, 2.0);
+      const Eigen::VectorXd expected = a.partialPivLu().solve(b);
+      const double error = f.solve(b.data());
+      EXPECT_LE(error, 1e-12);
+      EXPECT_LE((b - expected).norm(), 1e-8 * expected.norm()) << "seed " << seed;
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 18);
+}
+
+TEST(SparseLdlt, RepeatedAndMirroredTripletsAreSummed) {
+  const Triplets t = kkt(20, 6, 0.0, true, 7);
+  Triplets split = t;  // every off-diagonal entry as two halves, one of them mirrored
+  split.rows.clear();
+  split.cols.clear();
+  split.values.clear();
+  for (size_t k = 0; k < t.values.size(); ++k) {
+    const int i = t.rows[k], j = t.cols[k];
+    split.rows.push_back(i);
+    split.cols.push_back(j);
+    split.values.push_back(0.5 * t.values[k]);
+    split.rows.push_back(j);  // upper triangle this time
+    split.cols.push_back(i);
+    split.values.push_back(0.5 * t.values[k]);
+  }
+  SparseLdlt whole = analysed(t, 20), halves = analysed(split, 20);
+  ASSERT_EQ(whole.factor(t.values.data(), settings()), SparseLdlt::Factorised::kDone);
+  ASSERT_EQ(halves.factor(split.values.data(), settings()), SparseLdlt::Factorised::kDone);
+  EXPECT_EQ(whole.negative(), halves.negative());
+  Eigen::VectorXd x = Eigen::VectorXd::Ones(t.n), y = x;
+  whole.solve(x.data());
+  halves.solve(y.data());
+  EXPECT_LE((x - y).norm(), 1e-10 * x.norm());
+}
+
+// The backward error solve() reports is that of the x it returns, measured densely; on a
+// singular matrix too, where it is small only because x is huge (a matrix within that error of
+// A is solved exactly: what backward stability promises, and all any solver can give there).
+TEST(SparseLdlt, TheReportedBackwardErrorIsTheReturnedSolutions) {
+  // Two equal constraint rows: J is rank deficient, the KKT matrix singular.
+  const Triplets t = kkt(12, 4, 0.0, true, 3);
+  const int nx = 12;
+  Triplets s = t;
+  s.n = t.n + 1;
+  for (size_t k = 0; k < t.values.size(); ++k)  // row nx copied as row n
+    if (t.rows[k] == nx + 1 && t.cols[k] <= nx) s.add(t.n, t.cols[k] - 1, t.values[k]);
+  ASSERT_LT(smallest_singular_value(s.dense()), 1e-12);
+  for (const Triplets* m : std::vector<const Triplets*>{&t, &s}) {
+    const Eigen::MatrixXd a = m->dense();
+    SparseLdlt f = analysed(*m, nx);
+    ASSERT_EQ(f.factor(m->values.data(), settings()), SparseLdlt::Factorised::kDone);
+    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(m->n, 1.0, 2.0);  // b_r != b_n
+    Eigen::VectorXd x = b;
+    const double reported = f.solve(x.data());
+    const double norm_a = a.cwiseAbs().rowwise().sum().maxCoeff();
+    const double measured = (b - a * x).lpNorm<Eigen::Infinity>() /
+                            (norm_a * x.lpNorm<Eigen::Infinity>() + b.lpNorm<Eigen::Infinity>());
+    EXPECT_LE(reported, 10 * measured + 1e-15);
+    EXPECT_LE(measured, 10 * reported + 1e-15);
+    if (m == &s) EXPECT_GT(x.norm(), 1e6);  // the singular one: no moderate solution exists
+  }
+}
+
+// A constraint row without a nonzero (its variables all fixed, δc = 0) makes A singular: it is
+// refused and counted, so that the caller can say so (core/ipopt/kkt_solver.h answers
+// "singular").
+TEST(SparseLdlt, AnEmptyRowIsRefusedAndCounted) {
+  Triplets t = kkt(10, 3, 0.0, true, 9);
+  SparseLdlt f = analysed(t, 10);
+  ASSERT_EQ(f.factor(t.values.data(), settings()), SparseLdlt::Factorised::kDone);
+  EXPECT_EQ(f.empty_rows(), 0);
+  for (size_t k = 0; k < t.values.size(); ++k)  // constraint row 11 (1-based) emptied
+    if (t.rows[k] == 11 || t.cols[k] == 11) t.values[k] = 0.0;
+  EXPECT_EQ(f.factor(t.values.data(), settings()), SparseLdlt::Factorised::kEmptyRow);
+  EXPECT_EQ(f.empty_rows(), 1);
+}
+
+TEST(SparseLdlt, ANanIsRefused) {
+  Triplets t = kkt(10, 3, 0.0, true, 5);
+  t.values[4] = std::nan("");
+  SparseLdlt f = analysed(t, 10);
+  EXPECT_EQ(f.factor(t.values.data(), settings()), SparseLdlt::Factorised::kNotFinite);
+}
+
+TEST(SparseLdlt, NewValuesOnTheSameStructureAndTheSameBitsTwice) {
+  const Triplets first = kkt(30, 10, 0.0, false, 11);
+  Triplets second = first;
+  for (double& v : second.values) v *= 1.5;
+  SparseLdlt f = analysed(first, 30);
+  Eigen::VectorXd runs[3];
+  const Triplets* order[3] = {&first, &second, &first};
+  for (int r = 0; r < 3; ++r) {
+    ASSERT_EQ(f.factor(order[r]->values.data(), settings()), SparseLdlt::Factorised::kDone);
+    runs[r] = Eigen::VectorXd::LinSpaced(first.n, 0.0, 1.0);
+    EXPECT_LE(f.solve(runs[r].data()), 1e-12);
+  }
+  // The second matrix is 1.5 times the first: its solution is the first's over 1.5.
+  EXPECT_LE((1.5 * runs[1] - runs[0]).norm(), 1e-9 * runs[0].norm());
+  for (int k = 0; k < first.n; ++k) EXPECT_EQ(runs[0][k], runs[2][k]);  // bit for bit
+}
+
+}  // namespace
+}  // namespace disco
