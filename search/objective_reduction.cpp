@@ -107,6 +107,7 @@ struct Reduction {
     out.solves.push_back(rec);
     out.nlp_solves += r.nlp_solves;
     out.iterations += r.iterations;
+    out.kkt += r.kkt;
     if (on_solve) on_solve(rec);
   }
   void record(Phase phase, double bound, const MpccResult& r, bool improved) {

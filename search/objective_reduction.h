@@ -161,6 +161,7 @@ struct ReductionResult {
   Stationarity stationarity = Stationarity::kFeasible;  // of best
   std::vector<SolveRecord> solves;
   int nlp_solves = 0, iterations = 0;
+  KktCounts kkt;  // of all its NLP solves
   double seconds = 0.0;
   double time_to_first_feasible = -1.0;  // s, -1 if none
   double time_to_best = -1.0;

@@ -86,6 +86,7 @@ json StartOutcome::to_json() const {
             {"max_complementarity", number_or_null(max_complementarity)}}},
           {"nlp_solves", nlp_solves},
           {"iterations", iterations},
+          {"kkt", {{"factorisations", kkt_factorisations}, {"fallbacks", kkt_fallbacks}}},
           {"seconds", seconds},
           {"time_to_first_feasible", time_to_first_feasible},
           {"time_to_best", time_to_best},
@@ -118,6 +119,10 @@ StartOutcome StartOutcome::from_json(const json& j) {
   o.max_complementarity = number_or_nan(j.at("certificate").at("max_complementarity"));
   o.nlp_solves = j.value("nlp_solves", 0);
   o.iterations = j.value("iterations", 0);
+  if (j.contains("kkt")) {  // older files: none
+    o.kkt_factorisations = j["kkt"].value("factorisations", 0);
+    o.kkt_fallbacks = j["kkt"].value("fallbacks", 0);
+  }
   o.seconds = j.value("seconds", 0.0);
   o.time_to_first_feasible = j.value("time_to_first_feasible", -1.0);
   o.time_to_best = j.value("time_to_best", -1.0);
@@ -154,6 +159,8 @@ StartOutcome run_start(const Scene& scene, const Settings& settings, const Start
     out.stopped = stop_line(r.stop, start.schedule);
     out.nlp_solves = r.nlp_solves;
     out.iterations = r.iterations;
+    out.kkt_factorisations = r.kkt.factorisations;
+    out.kkt_fallbacks = r.kkt.fallbacks;
     out.time_to_first_feasible = r.time_to_first_feasible;
     out.time_to_best = r.time_to_best;
     for (const auto& i : r.history) out.history.push_back({i.seconds, i.value});

@@ -65,6 +65,8 @@ struct StartOutcome {
   double max_violation = std::numeric_limits<double>::quiet_NaN();
   double max_complementarity = std::numeric_limits<double>::quiet_NaN();
   int nlp_solves = 0, iterations = 0;
+  // KKT factorisations, and those that went to MUMPS (core/ipopt/kkt_solver.h)
+  int kkt_factorisations = 0, kkt_fallbacks = 0;
   double seconds = 0.0;
   double time_to_first_feasible = -1.0, time_to_best = -1.0;  // s within the start
   std::string description;  // StartSpec::describe()

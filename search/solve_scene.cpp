@@ -48,6 +48,7 @@ void prepend(const ReductionResult& coarse, ReductionResult& fine) {
   const double dt = coarse.seconds;
   fine.nlp_solves += coarse.nlp_solves;
   fine.iterations += coarse.iterations;
+  fine.kkt += coarse.kkt;
   fine.seconds += dt;
   if (fine.time_to_first_feasible >= 0) fine.time_to_first_feasible += dt;
   if (fine.time_to_best >= 0) fine.time_to_best += dt;
@@ -122,6 +123,8 @@ SceneSolve solve_scene(const Scene& scene, const Settings& settings, const Start
   out.info.status = out.result.status;
   out.info.nlp_solves = out.result.nlp_solves;
   out.info.iterations = out.result.iterations;
+  out.info.kkt_factorisations = out.result.kkt.factorisations;
+  out.info.kkt_fallbacks = out.result.kkt.fallbacks;
   if (out.result.found) {
     out.z = out.result.best.z;
     out.info.stationarity = out.result.stationarity;

@@ -3,7 +3,7 @@
 scripts write (CTest script.common, script.results; see tests/CMakeLists.txt).
 
   script_tests.py SCRIPTS WORKDIR common
-  script_tests.py SCRIPTS WORKDIR results DISCO
+  script_tests.py SCRIPTS WORKDIR results DISCO BENCH_KKT
 
 common   without disco: the results file's sections (a run replaces only its own label; a
          full run drops its configuration's partial sections; a partial run never touches the
@@ -16,13 +16,18 @@ results  with a real disco: scripts/bench_stress and scripts/bench_examples on o
          nproc, memory, wall time) and the table; a second run with other options adds its own
          section and keeps the first. And common.solve on one_robot_axis: the solve log's
          iterations and NLP solves, summed, equal solution.json's timing (two records disco
-         writes independently).
+         writes independently). Then bench_kkt (BENCH_KKT, tests/bench_kkt.cpp) on a KKT matrix
+         of known inertia written here, [H Jᵀ; J 0] with H positive definite, and on a truncated
+         one; and scripts/bench_kkt on start 0 of A2 (a corpus it dumps with disco).
 """
 import argparse
+import json
 import os
+import random
 import re
 import shutil
 import stat
+import struct
 import subprocess
 import sys
 
@@ -201,7 +206,6 @@ def test_results(disco):
           + (r.stderr if r.returncode else ""))
     check(sections(examples) == ["smoke"], f"--label names the section ({sections(examples)})")
     sol = os.path.join(WORK, "examples", "runs", "one_robot_axis", "solution.json")
-    import json
     with open(sol) as f:
         doc = json.load(f)
     m = doc["model"]
@@ -221,13 +225,76 @@ def test_results(disco):
     check(run.lines[0].phase == "feasibility", f"the first solve is the feasibility phase ({run.lines[0].phase})")
 
 
+def write_kkt(path, nx, m, seed):
+    """A KKT file (core/ipopt/kkt_solver.h) of [H Jᵀ; J 0]: H (nx × nx) tridiagonal and diagonally
+    dominant, J (m × nx, m <= nx) with a nonzero J(r, r) and two more entries per row, one triangle,
+    one entry repeated (to be summed). Its inertia: nx positive, m negative eigenvalues."""
+    rnd = random.Random(seed)
+    triplets = []
+    for i in range(1, nx + 1):
+        triplets.append((i, i, 4.0 + rnd.random()))
+        if i < nx:
+            triplets.append((i + 1, i, -1.0))
+    for r in range(1, m + 1):
+        triplets += [(nx + r, r, 1.0 + rnd.random()), (nx + r, rnd.randint(1, nx), rnd.uniform(-1, 1)),
+                     (nx + r, rnd.randint(1, nx), rnd.uniform(-1, 1))]
+    triplets.append((nx + 1, 1, 0.5))
+    ia, ja, va = zip(*triplets)
+    n, nnz = nx + m, len(ia)
+    with open(path, "wb") as f:
+        f.write(b"DISCOKKT" + struct.pack("<6i", 1, n, nnz, nx, 1, m))
+        f.write(struct.pack(f"<{nnz}i", *ia) + struct.pack(f"<{nnz}i", *ja) + struct.pack(f"<{nnz}d", *va))
+        f.write(struct.pack(f"<{n}d", *[rnd.uniform(-1, 1) for _ in range(n)]))
+
+
+def test_bench_kkt(bench):
+    kkt = os.path.join(WORK, "kkt")
+    os.makedirs(kkt)
+    good, cut = os.path.join(kkt, "good.kkt"), os.path.join(kkt, "cut.kkt")
+    write_kkt(good, 300, 120, 1)
+    with open(good, "rb") as f, open(cut, "wb") as g:
+        g.write(f.read()[:200])
+    r = subprocess.run([bench, good, "--repeat", "2"], capture_output=True, text=True)
+    lines = [json.loads(line) for line in r.stdout.splitlines()]
+    check(r.returncode == 0 and len(lines) == 2 and "residual_tolerance" in lines[0]["ldlt"],
+          f"bench_kkt: a header line and one row ({r.returncode})" + (r.stderr if r.returncode else ""))
+    if len(lines) == 2:
+        row = lines[1]
+        check((row["n"], row["dual_from"], row["expected_negative"]) == (420, 300, 120),
+              f"bench_kkt reads the file's sizes ({row['n']}, {row['dual_from']}, {row['expected_negative']})")
+        for name in ("mumps", "ldlt"):
+            s = row[name]
+            check(s.get("negative") == 120 and (s.get("backward_error") or 1) < 1e-12 and s["factor_ms"] > 0
+                  and s["solve_ms"] > 0, f"bench_kkt {name}: 120 negative eigenvalues, backward error "
+                  f"{s.get('backward_error')}, times {s.get('factor_ms')} / {s.get('solve_ms')} ms")
+    r = subprocess.run([bench, cut], capture_output=True, text=True)
+    check(r.returncode == 2 and f"{cut}: truncated KKT file" in r.stderr,
+          f"bench_kkt: a truncated file exits 2 naming it ({r.returncode}, {r.stderr.strip()})")
+
+    out = os.path.join(WORK, "bench_kkt.md")
+    r = run_script("bench_kkt", "--disco", DISCO, "--bench", bench, "--corpus", os.path.join(WORK, "corpus"),
+                   "--scenes", "A2", "--starts", "0", "--repeat", "1", "--results", out)
+    check(r.returncode == 0, f"scripts/bench_kkt --scenes A2 --starts 0 exits 0 ({r.returncode})"
+          + (r.stderr[-2000:] if r.returncode else ""))
+    folder = os.path.join(WORK, "corpus", "A2_s0")
+    dumped = [f for f in os.listdir(folder) if f.endswith(".kkt")] if os.path.isdir(folder) else []
+    check(len(dumped) >= 5 and os.path.isfile(os.path.join(folder, "source.json")),
+          f"the corpus: {len(dumped)} matrices and source.json in A2_s0")
+    label = "default (partial: --scenes A2 --starts 0 --repeat 1)"
+    text = section_text(out, label) if os.path.isfile(out) and label in sections(out) else ""
+    check(re.search(rf"^\| A2 \| {len(dumped)} \| \d+–\d+ \|", text, re.M) is not None,
+          f"the section '{label}' has A2's row with its {len(dumped)} matrices")
+
+
 shutil.rmtree(WORK, ignore_errors=True)
 os.makedirs(WORK)
 if MODE == "common":
     test_common()
     test_incumbent_measures()
 elif MODE == "results":
-    test_results(sys.argv[4])
+    DISCO = sys.argv[4]
+    test_results(DISCO)
+    test_bench_kkt(sys.argv[5])
 else:
     sys.exit(f"unknown mode {MODE}")
 finish(f"script.{MODE}")

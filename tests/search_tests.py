@@ -283,13 +283,14 @@ elif MODE == "timelimit":
 
     # Under the machine's clock, only what holds at any speed, on each scene's start 0 (the
     # clean run's own starts 0: a start is the same whatever --starts says): a limit far below
-    # the search's length (0.5 s; those starts run seconds) ends the run, marked cut, and
+    # the search's length (0.1 s; those starts run 0.4 s with disco's KKT solver, seconds
+    # before it) ends the run, marked cut, and
     # --resume without the limit ends with the clean run's runs (the clock does not change a
     # start's path when no limit falls in it).
     wall = os.path.join(WORK, "timelimit_wall")
     shutil.rmtree(wall, ignore_errors=True)
     one = ["--starts", "1", *DET]
-    r = subprocess.run([DISCO, "search", BENCH, "--seed", "7", "--out", wall, "--time-limit", "0.5", *one],
+    r = subprocess.run([DISCO, "search", BENCH, "--seed", "7", "--out", wall, "--time-limit", "0.1", *one],
                        env=ENV, capture_output=True, text=True)
     check(r.returncode in (0, 3), f"wall clock: the time-limited search exits 0 or 3 (got {r.returncode})")
     check(best(wall)["time_limit_reached"] is True, "wall clock: best.json says the time limit was reached")
@@ -448,9 +449,9 @@ elif MODE == "manifest":
           f"--resume refuses runs without a manifest ({r.stderr[-200:]!r})")
 elif MODE in ("interrupt", "killrandom"):
     swap = os.path.join(os.path.dirname(BENCH), "../scenarios/two_robots_swap_avoid.yaml")
-    # interrupt: two starts of ~6 s each (45 steps), so both ranks are inside one at the signal;
-    # killrandom: the smoke benchmark.
-    config = [swap, "--set", "scene.steps=45", "--starts", "2"] if MODE == "interrupt" else [BENCH]
+    # interrupt: two starts of ~5 s each (120 steps; with disco's own KKT solver, 45 steps took
+    # under 1 s), so both ranks are inside one at the signal; killrandom: the smoke benchmark.
+    config = [swap, "--set", "scene.steps=120", "--starts", "2"] if MODE == "interrupt" else [BENCH]
 
     def command(out, *extra):
         return [DISCO, "search", *config, "--seed", "7", "--out", out, *DET, *extra]

@@ -76,10 +76,13 @@ TEST(PerturbedFirst, IpoptTriesTheUnperturbedMatrixOnlyInItsFirstThreeIterations
   // Every iteration factorised at least once; with the option, fewer factorisations in all
   // (at most the trials Ipopt logs, less those answered, plus the cold start's least-squares
   // multiplier estimate, which Ipopt does not log as a trial).
-  EXPECT_GE(on.result.kkt.factorisations, on.result.iterations);
-  EXPECT_LE(on.result.kkt.factorisations, on.trials - 4 + 1);
-  EXPECT_LE(off.result.kkt.factorisations, off.trials + 1);
-  EXPECT_LT(on.result.kkt.factorisations, off.result.kkt.factorisations);
+  // (A matrix disco's LDLᵀ sends to MUMPS is one trial factorised twice: kkt.fallbacks.)
+  const int on_trials = on.result.kkt.factorisations - on.result.kkt.fallbacks;
+  const int off_trials = off.result.kkt.factorisations - off.result.kkt.fallbacks;
+  EXPECT_GE(on_trials, on.result.iterations);
+  EXPECT_LE(on_trials, on.trials - 4 + 1);
+  EXPECT_LE(off_trials, off.trials + 1);
+  EXPECT_LT(on_trials, off_trials);
 }
 
 // A start of the objective reduction (start 0 of a small swap scene) ends with a certified

@@ -67,8 +67,27 @@ std::vector<IpoptOption> ipopt_options(const Settings& settings) {
   return out;
 }
 
-IpoptSettings ipopt_settings(const Settings& settings) {
-  return {ipopt_options(settings), settings.boolean("kkt.perturbed_first")};
+LdltSettings ldlt_settings(const Settings& s) {
+  LdltSettings l;
+  l.scaling_sweeps = integer_at_least(s, "kkt.ldlt.scaling_sweeps", 0);
+  l.regularisation = positive(s, "kkt.ldlt.regularisation");
+  if (l.regularisation >= 1) refuse(s, "kkt.ldlt.regularisation", "must be below 1");
+  l.residual_tolerance = positive(s, "kkt.ldlt.residual_tolerance");
+  l.refinement_steps = integer_at_least(s, "kkt.ldlt.refinement_steps", 0);
+  return l;
+}
+
+IpoptSettings ipopt_settings(const Settings& s) {
+  IpoptSettings i;
+  i.options = ipopt_options(s);
+  i.perturbed_first = s.boolean("kkt.perturbed_first");
+  i.kkt_solver = choice<KktSolverKind>(
+      s, "kkt.solver", {{"mumps", KktSolverKind::kMumps}, {"ldlt", KktSolverKind::kLdlt}});
+  i.ldlt = ldlt_settings(s);
+  i.dump.every = integer_at_least(s, "kkt.dump.every", 0);
+  i.dump.dir = s.text("kkt.dump.dir");
+  if (i.dump.every > 0 && i.dump.dir.empty()) refuse(s, "kkt.dump.dir", "must name a folder");
+  return i;
 }
 
 MemoryLimit memory_limit(const Settings& s) {

@@ -64,6 +64,7 @@ struct ReductionSettings {
 };
 
 std::vector<IpoptOption> ipopt_options(const Settings& settings);    // the `ipopt:` section
+LdltSettings ldlt_settings(const Settings& settings);  // `kkt.ldlt`: disco's LDLᵀ
 IpoptSettings ipopt_settings(const Settings& settings);  // `ipopt:` + `kkt:`: an IpoptSolver's
 ElasticSettings elastic_settings(const Settings& settings);          // the `elastic:` section
 ModelOptions model_options(const Settings& settings);                // the `model:` section

@@ -99,6 +99,7 @@ MpccResult ElasticSolver::solve_branch(const Mpcc& mpcc, const MpccResult& from,
 
   MpccResult out = from;
   out.nlp_solves = out.iterations = 0;
+  out.kkt = {};
   out.branch_solves = out.flips = 0;
   out.b_stationary = false;
   const double tol = settings_.complementarity_tol;
@@ -112,14 +113,17 @@ MpccResult ElasticSolver::solve_branch(const Mpcc& mpcc, const MpccResult& from,
     const NlpResult r = ipopt_.solve(nlp, point, limits(request));
     out.nlp_solves += 1;
     out.iterations += r.iterations;
+    out.kkt += r.kkt;
     out.branch_solves += 1;
     out.outcome = r.outcome;
     out.ipopt_status = r.ipopt_status;
     const Vector z = r.point.z.head(n);
     const Certificate cert = certify(mpcc, z);
-    spdlog::debug("      ipopt branch  round {:<3} {:<26} {:>5} it {:>8.3f} s  compl {:.1e}  viol {:.1e}",
+    spdlog::debug("      ipopt branch  round {:<3} {:<26} {:>5} it {:>8.3f} s  compl {:.1e}  viol {:.1e}"
+                  "  kkt {}/{}",
                   round, ipopt_status_name(r.ipopt_status), r.iterations, r.seconds,
-                  cert.max_complementarity, cert.max_violation);
+                  cert.max_complementarity, cert.max_violation, r.kkt.fallbacks,
+                  r.kkt.factorisations);
     if (!r.converged() || !cert.within(settings_.violation_tol, tol)) {
       // The first branch solve failing is the result's status; a later one keeps the last
       // certified branch point.
@@ -267,14 +271,17 @@ MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta,
     out.ipopt_status = r.ipopt_status;
     out.nlp_solves += 1;
     out.iterations += r.iterations;
+    out.kkt += r.kkt;
     out.elastic_point = r.point;
     out.zeta = zeta_used;
     out.z = r.point.z.head(n);
     out.certificate = certify(mpcc, out.z);
     if (!mpcc.objective(out.z, out.objective)) out.objective = kInf;
-    spdlog::debug("      ipopt {:<7} zeta {:<8.3g} {:<26} {:>5} it {:>8.3f} s  compl {:.1e}  viol {:.1e}",
+    spdlog::debug("      ipopt {:<7} zeta {:<8.3g} {:<26} {:>5} it {:>8.3f} s  compl {:.1e}  viol {:.1e}"
+                  "  kkt {}/{}",
                   what, zeta_used, ipopt_status_name(r.ipopt_status), r.iterations, r.seconds,
-                  out.certificate.max_complementarity, out.certificate.max_violation);
+                  out.certificate.max_complementarity, out.certificate.max_violation,
+                  r.kkt.fallbacks, r.kkt.factorisations);
   };
 
   // 1-2. Elastic solves until complementarity is tight (or cannot be made so).
@@ -309,9 +316,11 @@ MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta,
       out.elastic_point = before.elastic_point;
     } else {
       const int solves = out.nlp_solves, iters = out.iterations;
+      const KktCounts kkt = out.kkt;
       out = before;  // the elastic answer stands
       out.nlp_solves = solves;
       out.iterations = iters;
+      out.kkt = kkt;
     }
   }
   out.seconds = seconds_since(t0);

@@ -105,6 +105,7 @@ struct MpccResult {
   Certificate certificate;
   int nlp_solves = 0;
   int iterations = 0;
+  KktCounts kkt;  // of all its NLP solves
   double seconds = 0.0;
   double zeta = 0.0;       // penalty at the end
   bool polished = false;

@@ -250,6 +250,9 @@ struct IpoptSolver::Application {
 
 IpoptSolver::IpoptSolver(const IpoptSettings& settings) : IpoptSolver(settings.options) {
   perturbed_first_ = settings.perturbed_first;
+  kkt_solver_ = settings.kkt_solver;
+  ldlt_ = settings.ldlt;
+  dump_ = settings.dump;
 }
 
 IpoptSolver::IpoptSolver(const std::vector<IpoptOption>& options)
@@ -325,7 +328,8 @@ NlpResult IpoptSolver::solve(const Nlp& nlp, const NlpPoint& start, const NlpLim
   app->Options()->SetNumericValue("tol", std::max(stage.tol, tol_));
   auto* adapter = new TnlpAdapter(nlp, start, out, limits);
   Ipopt::SmartPtr<Ipopt::TNLP> tnlp = adapter;
-  const KktOptions kkt{perturbed_first_, !(warm_start_ && start.has_duals())};
+  const KktOptions kkt{perturbed_first_, !(warm_start_ && start.has_duals()), kkt_solver_, ldlt_,
+                       dump_, &dumped_};
   out.ipopt_status = static_cast<int>(optimize(*app, tnlp, kkt, out.kkt));
   if (adapter->error()) std::rethrow_exception(adapter->error());  // a bug in a callback
   out.outcome = outcome_of(out.ipopt_status, adapter->stopped());

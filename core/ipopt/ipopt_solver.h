@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "core/linalg/sparse_ldlt.h"
 #include "core/nlp/nlp.h"
 #include "core/util/clock.h"
 
@@ -31,11 +32,26 @@ struct IpoptOption {
 
 // What an IpoptSolver is made from: Ipopt's options, and how disco treats Ipopt's KKT
 // factorisations (the `kkt:` section of configs/disco.yaml).
+// Which solver factorises Ipopt's KKT matrices (kkt.solver).
+enum class KktSolverKind {
+  kMumps,  // Ipopt's MUMPS interface
+  kLdlt,   // disco's LDLᵀ (core/linalg/sparse_ldlt.h), MUMPS for what it cannot solve
+};
+
+// kkt.dump: every `every`-th factorised KKT matrix to `dir` (0: none; core/ipopt/kkt_solver.h).
+struct KktDump {
+  int every = 0;
+  std::string dir;
+};
+
 struct IpoptSettings {
   std::vector<IpoptOption> options;
   // Start every iteration's factorisation from a Hessian perturbation (Ipopt's
   // degenerate-Hessian mode) instead of first trying none: core/ipopt/kkt_solver.h.
   bool perturbed_first = false;
+  KktSolverKind kkt_solver = KktSolverKind::kMumps;
+  LdltSettings ldlt;  // used with KktSolverKind::kLdlt
+  KktDump dump;
 };
 
 // Primal and dual values of an NLP solve (Ipopt's sign conventions).
@@ -83,8 +99,18 @@ std::string to_string(NlpOutcome outcome);
 
 // What the KKT linear solver did in one solve (core/ipopt/kkt_solver.h).
 struct KktCounts {
-  int factorisations = 0;  // numerical factorisations MUMPS ran
+  int factorisations = 0;  // numerical factorisations run (by either solver)
   int answered = 0;        // answered "singular" without factorising (kkt.perturbed_first)
+  // kkt.solver ldlt: the matrices MUMPS factorised because disco's LDLᵀ could not solve them
+  // to kkt.ldlt.residual_tolerance (or met a NaN or Inf), or because Ipopt asked for more
+  // quality; counted in factorisations too.
+  int fallbacks = 0;
+  KktCounts& operator+=(const KktCounts& o) {
+    factorisations += o.factorisations;
+    answered += o.answered;
+    fallbacks += o.fallbacks;
+    return *this;
+  }
 };
 
 struct NlpResult {
@@ -122,6 +148,10 @@ class IpoptSolver {
   struct Application;  // holds Ipopt's reference-counted application
   std::unique_ptr<Application> app_;
   bool perturbed_first_ = false;  // IpoptSettings::perturbed_first
+  KktSolverKind kkt_solver_ = KktSolverKind::kMumps;
+  LdltSettings ldlt_;
+  KktDump dump_;
+  int dumped_ = 0;  // KKT matrices factorised so far, for kkt.dump.every
   bool warm_start_ = false;  // the configured warm_start_init_point (Ipopt's default: no)
   // The configured barrier options, restored after a solve with a BarrierStage.
   std::string mu_strategy_;

@@ -5,9 +5,35 @@
 // AlgorithmBuilder whose augmented-system solver is StdAugSystemSolver(TSymLinearSolver(S)),
 // Ipopt's option linear_solver "custom": exactly what Ipopt builds for linear_solver mumps without
 // scaling (our `ipopt:` settings), but with S a SparseSymLinearSolverInterface of disco's. S
-// factorises with Ipopt's own MUMPS interface (MumpsSolverInterface: every `mumps_*` option of
-// Ipopt still applies), counts the factorisations, and with KktOptions::perturbed_first answers
-// Ipopt's degeneracy test:
+// factorises with the solver kkt.solver names, counts the factorisations, and with
+// KktOptions::perturbed_first answers Ipopt's degeneracy test (below).
+//
+// kkt.solver mumps: Ipopt's own MUMPS interface (MumpsSolverInterface: every `mumps_*` option of
+// Ipopt applies), exactly as Ipopt calls it.
+//
+// kkt.solver ldlt: disco's LDLᵀ (core/linalg/sparse_ldlt.h; analysed once per solve, at its
+// first factorisation; the constraint block is Ipopt's rows of y_c and y_d, the last of the
+// augmented system x, s, c, d). MUMPS's overhead per factorisation (11 ms on n ≈ 11 k for
+// 5 MFlop; ~6 ms for a diagonal matrix) is what the LDLᵀ saves (scripts/results/bench_kkt.md).
+//   - A factorisation whose inertia is not the one Ipopt asks for is answered "wrong inertia"
+//     at once: either it is A's, or A is within the regularisation of singular; Ipopt's answer
+//     to both (a larger perturbation) is safe.
+//   - A matrix with a row without a nonzero (a constraint whose variables are all fixed, with
+//     δc = 0, as in a polish solve) is answered "singular", as MUMPS finds it (a zero pivot):
+//     Ipopt then regularises the constraint block. (Without that, the LDLᵀ's regularisation
+//     solved such matrices, Ipopt never learned of the singularity, and polish solves took
+//     hundreds of iterations instead of tens: paper B2 start 0.)
+//   - One with the asked-for inertia is solved; the first solve with a new matrix refines to
+//     kkt.ldlt.residual_tolerance, which vouches for the inertia too (sparse_ldlt.h). Later
+//     solves with the same factors (Ipopt refining its own solution) return what the factors
+//     give: Ipopt judges those residuals itself and asks for more quality when they are poor.
+//   - A matrix it cannot solve to the tolerance (or with a NaN or Inf in its values or
+//     pivots), and one whose solves Ipopt wants more accurate (IncreaseQuality), goes to MUMPS:
+//     factorised again there, solved there until the next matrix, counted in
+//     KktCounts::fallbacks (and reported in the solve summary, runs.jsonl and solution.json).
+//     MUMPS's own IncreaseQuality (a larger pivot tolerance) then applies to that matrix.
+//
+// The degeneracy test:
 //
 // Each Ipopt iteration factorises its KKT matrix [W + Σ + δx I, Jᵀ; J, −δc I] and checks its
 // inertia (n positive, m negative eigenvalues). Ipopt 3.11.9 first tries δx = 0 and, when the
@@ -39,6 +65,9 @@
 // most a third of the last one on those that were not. What Ipopt computes is otherwise
 // unchanged: every answer is still certified by disco (core/elastic/elastic_solver.h).
 //
+// A failed internal check (or bad_alloc) inside S is kept and rethrown by optimize() once Ipopt
+// has returned (S answers Ipopt "fatal error"): no exception crosses into Ipopt.
+//
 // Ipopt's internal classes come from the headers of Debian's source package of the installed
 // Ipopt (scripts/setup; core/README.md, "Ipopt's internals"); only kkt_solver.cpp includes them.
 // S is made anew for every solve (the algorithm is rebuilt per solve), so a solve keeps no state
@@ -57,7 +86,21 @@ struct KktOptions {
   bool perturbed_first = false;  // answer the degeneracy test (above)
   bool cold = false;  // the solve starts without warm-start duals: its first factorisation is
                       // the least-squares multiplier estimate, passed through
+  KktSolverKind solver = KktSolverKind::kMumps;  // which solver factorises (below)
+  LdltSettings ldlt;
+  KktDump dump;
+  int* dumped = nullptr;  // matrices factorised so far by this IpoptSolver (kkt.dump.every)
 };
+
+// kkt.dump writes every `every`-th matrix Ipopt hands over for factorisation (the degeneracy
+// test's answered ones excepted) to DIR/NNNNNN.kkt, NNNNNN its count in this IpoptSolver from 0.
+// Binary, little-endian: the 8 bytes kKktFileMagic; int32 version (kKktFileVersion), n, nnz,
+// dual_from (rows dual_from..n−1: the constraint block), check_inertia (0/1), the number of
+// negative eigenvalues Ipopt wants; int32 ia[nnz], ja[nnz] (Ipopt's triplets: 1-based, one
+// triangle, repeats to be summed); double values[nnz]; double rhs[n] (the first right-hand
+// side). scripts/bench_kkt reads them.
+inline constexpr char kKktFileMagic[9] = "DISCOKKT";
+inline constexpr int kKktFileVersion = 1;
 
 // Ipopt's option `linear_solver` while disco's solver is plugged in ("custom").
 inline constexpr const char* kCustomLinearSolver = "custom";

@@ -78,7 +78,10 @@ json solution_json(const RobotProblem& problem, const Vector& z, const SolutionI
       {"complementarity_product", bound(info.certificate.complementarity_product)},
       {"units", "dimensionless: length = mean radius, mass = mean mass, force = mean F_max"}};
   doc["timing"] = {
-      {"wall_s", info.wall_s}, {"nlp_solves", info.nlp_solves}, {"iterations", info.iterations}};
+      {"wall_s", info.wall_s},
+      {"nlp_solves", info.nlp_solves},
+      {"iterations", info.iterations},
+      {"kkt", {{"factorisations", info.kkt_factorisations}, {"fallbacks", info.kkt_fallbacks}}}};
 
   const State unit{u.length, u.length, 1.0, u.velocity(), u.velocity(), 1.0 / u.time};
   auto value = [&](const Affine& a) { return a.value(z); };

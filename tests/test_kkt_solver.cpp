@@ -1,0 +1,142 @@
+// kkt.solver (core/ipopt/kkt_solver.h): disco's LDLᵀ inside Ipopt reaches the optimum MUMPS
+// reaches; a matrix it cannot solve to kkt.ldlt.residual_tolerance goes to MUMPS, counted, and
+// the solve still converges; the objective reduction ends certified with it; kkt.dump writes
+// the matrices in the documented format.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "core/config/settings.h"
+#include "core/config/solver_settings.h"
+#include "core/elastic/elastic_nlp.h"
+#include "core/ipopt/ipopt_solver.h"
+#include "core/ipopt/kkt_solver.h"
+#include "core/model/robot_problem.h"
+#include "core/model/scene_yaml.h"
+#include "search/guess.h"
+#include "search/solve_scene.h"
+#include "tests/test_support_model.h"
+
+namespace disco {
+namespace {
+
+// configs/disco.yaml's Ipopt and kkt settings, with overrides.
+IpoptSettings settings_with(const std::vector<std::string>& overrides) {
+  Settings s = Settings::load(default_settings_path());
+  for (const auto& o : overrides) s.apply_override(o);
+  return ipopt_settings(s);
+}
+
+// The elastic NLP of two robots meeting in contact: the bilinear complementarity terms make its
+// KKT matrices indefinite, its constraint block starts empty (δc = 0).
+struct Contact {
+  Scene scene = model_test::two_robots_meeting_in_contact(8);
+  RobotProblem rp{scene};
+  ElasticNlp elastic{rp.program(), ElasticFormulation::kLumped, 10.0};
+  NlpResult solve(const IpoptSettings& settings) const {
+    IpoptSolver solver(settings);
+    NlpPoint start;
+    start.z = elastic.lift(smoothstep_guess(rp, 4.0));
+    return solver.solve(elastic, start);
+  }
+};
+
+// (Both converge; not necessarily to the same local optimum of this nonconvex NLP: other
+// rounding, another path. test_ipopt_solver.cpp checks a known optimum with either solver.)
+TEST(KktSolver, DiscosLdltSolvesAContactNlpWithoutMumps) {
+  const Contact c;
+  const NlpResult mumps = c.solve(settings_with({"kkt.solver=mumps"}));
+  const NlpResult ldlt = c.solve(settings_with({"kkt.solver=ldlt"}));
+  ASSERT_TRUE(mumps.converged()) << describe(mumps.outcome, mumps.ipopt_status);
+  ASSERT_TRUE(ldlt.converged()) << describe(ldlt.outcome, ldlt.ipopt_status);
+  EXPECT_GE(ldlt.kkt.factorisations, ldlt.iterations);
+  EXPECT_EQ(mumps.kkt.fallbacks, 0);  // counted for ldlt only
+  // Every matrix of this solve is well posed enough for the LDLᵀ alone.
+  EXPECT_EQ(ldlt.kkt.fallbacks, 0);
+}
+
+TEST(KktSolver, AMatrixTheLdltCannotSolveToTheToleranceGoesToMumpsCounted) {
+  const Contact c;
+  // A tolerance no solve reaches: every matrix goes to MUMPS.
+  const NlpResult all = c.solve(settings_with(
+      {"kkt.solver=ldlt", "kkt.ldlt.residual_tolerance=1e-300", "kkt.ldlt.refinement_steps=0"}));
+  ASSERT_TRUE(all.converged()) << describe(all.outcome, all.ipopt_status);
+  // Every iteration's accepted matrix went to MUMPS (a wrong inertia needs no solve: it is
+  // not sent), each after its own LDLᵀ factorisation.
+  EXPECT_GE(all.kkt.fallbacks, all.iterations);
+  EXPECT_GE(all.kkt.factorisations - all.kkt.fallbacks, all.kkt.fallbacks);
+}
+
+TEST(KktSolver, BadSettingsAreRefusedNamingTheKey) {
+  const auto message = [](const std::string& o) {
+    try {
+      settings_with({o});
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(message("kkt.solver=pardiso").find("kkt.solver"), std::string::npos);
+  EXPECT_NE(message("kkt.ldlt.regularisation=0").find("kkt.ldlt.regularisation"),
+            std::string::npos);
+  EXPECT_NE(message("kkt.ldlt.refinement_steps=-1").find("kkt.ldlt.refinement_steps"),
+            std::string::npos);
+  EXPECT_NE(message("kkt.dump.every=-2").find("kkt.dump.every"), std::string::npos);
+}
+
+TEST(KktSolver, TheObjectiveReductionEndsCertifiedWithTheLdlt) {
+  const Scene scene = load_scene(
+      std::string(DISCO_SOURCE_DIR) + "/configs/scenarios/two_robots_swap_avoid.yaml", {"steps=20"});
+  Settings settings = Settings::load(default_settings_path());
+  settings.apply_override("kkt.solver=ldlt");
+  const SceneSolve solve = solve_scene(scene, settings);
+  ASSERT_EQ(solve.result.status, MpccStatus::kSolved);
+  EXPECT_TRUE(solve.result.best.certificate.within(1e-6, 1e-6));
+}
+
+TEST(KktSolver, TheDumpWritesEveryKthMatrixInTheDocumentedFormat) {
+  const Contact c;
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / "disco_kkt_dump_test").string();
+  std::filesystem::remove_all(dir);
+  const NlpResult r =
+      c.solve(settings_with({"kkt.solver=ldlt", "kkt.dump.every=4", "kkt.dump.dir=" + dir}));
+  ASSERT_TRUE(r.converged());
+  // Every matrix handed over for factorisation counts (not the degeneracy test's answered ones,
+  // nor a fallback's second factorisation of the same matrix).
+  const int asked = r.kkt.factorisations - r.kkt.fallbacks;
+  int files = 0;
+  for (int k = 0; k < asked + 8; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "%06d.kkt", k);
+    const auto path = std::filesystem::path(dir) / name;
+    ASSERT_EQ(std::filesystem::exists(path), k % 4 == 0 && k < asked) << name;
+    if (!std::filesystem::exists(path)) continue;
+    ++files;
+    std::ifstream in(path, std::ios::binary);
+    char magic[8];
+    int32_t header[6];
+    in.read(magic, 8);
+    in.read(reinterpret_cast<char*>(header), sizeof header);
+    ASSERT_EQ(std::memcmp(magic, kKktFileMagic, 8), 0);
+    EXPECT_EQ(header[0], kKktFileVersion);
+    const int n = header[1], nnz = header[2], dual_from = header[3];
+    // The constraint block: one row per constraint, after the variables and the slacks.
+    EXPECT_EQ(n - dual_from, c.elastic.num_constraints());
+    EXPECT_LT(dual_from, n);
+    // Triplets, values and one right-hand side: exactly the rest of the file.
+    EXPECT_EQ(std::filesystem::file_size(path),
+              8 + sizeof header + nnz * (2 * sizeof(int32_t) + sizeof(double)) +
+                  n * sizeof(double));
+  }
+  EXPECT_GE(files, 2);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace disco
