@@ -234,6 +234,12 @@ json run_mumps(const KktFile& k, const Symmetric& a, const MumpsOptions& o, int 
         });
     out["solve_info1"] = m->info[0];
     out["backward_error"] = backward_error(a, k.rhs, x);
+    // ‖A‖∞ ‖x‖∞ / ‖b‖∞, a lower bound on A's condition number: huge where A is numerically
+    // singular (and its inertia decided by roundoff).
+    const double nb = max_abs(k.rhs);
+    out["growth"] = nb > 0 && std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); })
+                        ? json(a.norm * max_abs(x) / nb)
+                        : json(nullptr);
   }
   m->job = -2;
   dmumps_c(m.get());
@@ -248,6 +254,10 @@ json run_ldlt(const KktFile& k, const Symmetric& a, const LdltSettings& settings
   out["factor_ms"] = median_ms(
       repeat, [] {}, [&] { status = ldlt.factor(k.values.data(), settings); });
   out["finite"] = status == SparseLdlt::Factorised::kDone;
+  out["status"] = status == SparseLdlt::Factorised::kDone        ? "done"
+                  : status == SparseLdlt::Factorised::kEmptyRow ? "empty_row"
+                                                                 : "not_finite";
+  out["empty_rows"] = ldlt.empty_rows();
   if (status != SparseLdlt::Factorised::kDone) return out;
   out["negative"] = ldlt.negative();
   out["perturbed"] = ldlt.perturbed();

@@ -24,7 +24,7 @@ killrandom) runs --deterministic.
                the limit at most; some are never handed out; best.json says so; the same limit
                again gives the same runs; --resume without the limit ends with the runs and
                best of a clean run. Then on the machine's clock, only what holds at any speed
-               (starts 0 only): a 0.5 s limit ends the run marked cut, and --resume ends with
+               (starts 0 only): a 0.1 s limit ends the run marked cut, and --resume ends with
                the clean run's runs.
   manifest     OUT/manifest.json: a non-empty OUT is refused without --resume (nothing
                touched) and replaced with --force; --resume refuses a different seed, scene
