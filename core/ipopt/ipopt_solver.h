@@ -99,7 +99,8 @@ std::string to_string(NlpOutcome outcome);
 
 // What the KKT linear solver did in one solve (core/ipopt/kkt_solver.h).
 struct KktCounts {
-  int factorisations = 0;  // numerical factorisations run (by either solver)
+  int factorisations = 0;  // factorisations run by either solver (the LDLᵀ's refusals of a
+                           // matrix with an empty row included)
   int answered = 0;        // answered "singular" without factorising (kkt.perturbed_first)
   // kkt.solver ldlt: the matrices MUMPS factorised because disco's LDLᵀ could not solve them
   // to kkt.ldlt.residual_tolerance (or met a NaN or Inf), or because Ipopt asked for more
