@@ -344,7 +344,8 @@ elif MODE == "logging":
     out = os.path.join(WORK, "terminal")
     shutil.rmtree(out, ignore_errors=True)
     swap = os.path.join(os.path.dirname(BENCH), "../scenarios/two_robots_swap_avoid.yaml")
-    cmd = f"{DISCO} search {swap} --set scene.steps=30 --starts 3 --out {out}"  # starts of seconds: ticks in each
+    # starts of seconds (80 steps; 30 took a fraction of one with disco's KKT solver): ticks in each
+    cmd = f"{DISCO} search {swap} --set scene.steps=80 --starts 3 --out {out}"
     r = subprocess.run(["script", "-qec", cmd, "/dev/null"], env=ENV, capture_output=True)
     tty = r.stdout.decode(errors="replace")  # as bytes: "\r" kept
     # After each erase ("\r\x1b[K"): log lines ("...\r\n"), then the status drawn anew.
