@@ -94,7 +94,9 @@ TEST(SparseLdlt, KktMatricesGetTheDenseInertiaAndSolution) {
       SparseLdlt f = analysed(t, 40);
       ASSERT_EQ(f.factor(t.values.data(), settings()), SparseLdlt::Factorised::kDone);
       EXPECT_EQ(f.negative(), negative_eigenvalues(a)) << "seed " << seed << " c " << c;
-      if (convex) EXPECT_EQ(f.negative(), 15);  // a quasi-definite KKT matrix: m negative
+      if (convex) {
+        EXPECT_EQ(f.negative(), 15);  // a quasi-definite KKT matrix: m negative
+      }
       Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(t.n, -1.0, 2.0);
       const Eigen::VectorXd expected = a.partialPivLu().solve(b);
       const double error = f.solve(b.data());
@@ -155,7 +157,9 @@ TEST(SparseLdlt, TheReportedBackwardErrorIsTheReturnedSolutions) {
                             (norm_a * x.lpNorm<Eigen::Infinity>() + b.lpNorm<Eigen::Infinity>());
     EXPECT_LE(reported, 10 * measured + 1e-15);
     EXPECT_LE(measured, 10 * reported + 1e-15);
-    if (m == &s) EXPECT_GT(x.norm(), 1e6);  // the singular one: no moderate solution exists
+    if (m == &s) {
+      EXPECT_GT(x.norm(), 1e6);  // the singular one: no moderate solution exists
+    }
   }
 }
 
