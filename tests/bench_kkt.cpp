@@ -11,8 +11,12 @@
 //     ipopt.mumps_* options of the settings file, else Ipopt's defaults); analysis (job 1) once,
 //     factorisation (job 2) and solve (job 3) timed. Inertia: INFOG(12); INFO(1) < 0 is a failure
 //     (−10: singular).
+//   - mumps_check: MUMPS once more, untimed, with the AMD ordering (ICNTL(7) 0) and a pivot
+//     threshold of 0.01: where its inertia differs from mumps's, roundoff decides the inertia
+//     (scripts/bench_kkt then calls MUMPS's ambiguous).
 //   - ldlt: disco's SparseLdlt (core/linalg/sparse_ldlt.h) with the kkt.ldlt settings; analyse()
-//     once, factor() and solve() (which refines) timed. Inertia: negative().
+//     once, factor() and solve() (which refines) timed. Inertia: negative(); status "unstable"
+//     when its growth() is above kkt.ldlt.growth_limit (disco gives that matrix to MUMPS).
 // Each solve's x is checked here, the same way for both: the normwise backward error
 // ‖b − A x‖∞ / (‖A‖∞ ‖x‖∞ + ‖b‖∞) against the file's right-hand side b (null when x is not finite).
 //
@@ -253,15 +257,19 @@ json run_ldlt(const KktFile& k, const Symmetric& a, const LdltSettings& settings
   json out;
   out["factor_ms"] = median_ms(
       repeat, [] {}, [&] { status = ldlt.factor(k.values.data(), settings); });
-  out["finite"] = status == SparseLdlt::Factorised::kDone;
+  const bool factors = status == SparseLdlt::Factorised::kDone ||
+                       status == SparseLdlt::Factorised::kUnstable;
+  out["finite"] = factors;
   out["status"] = status == SparseLdlt::Factorised::kDone        ? "done"
+                  : status == SparseLdlt::Factorised::kUnstable ? "unstable"
                   : status == SparseLdlt::Factorised::kEmptyRow ? "empty_row"
                                                                  : "not_finite";
   out["empty_rows"] = ldlt.empty_rows();
-  if (status != SparseLdlt::Factorised::kDone) return out;
+  if (!factors) return out;
   out["negative"] = ldlt.negative();
   out["perturbed"] = ldlt.perturbed();
   out["regularised"] = ldlt.regularised();
+  out["growth"] = ldlt.growth();
   out["factor_entries"] = ldlt.factor_entries();
   out["flops"] = ldlt.flops();
   std::vector<double> x;
@@ -300,6 +308,12 @@ int main(int argc, char** argv) {
     for (const auto& s : sets) settings.apply_override(s);
     const LdltSettings ldlt = ldlt_settings(settings);
     const MumpsOptions mumps = mumps_options(settings);
+    // The same matrix by MUMPS again, another ordering (AMD) and a stricter threshold for its
+    // pivots: on a matrix whose inertia is determined by its values (not by roundoff), any
+    // ordering and pivot sequence give the same one (Sylvester's law of inertia).
+    MumpsOptions check = mumps;
+    check.pivot_order = 0;
+    check.pivtol = 1e-2;
     const json head = {{"settings", settings.source()},
                        {"repeat", repeat},
                        {"mumps",
@@ -308,11 +322,13 @@ int main(int argc, char** argv) {
                          {"permuting_scaling", mumps.permuting_scaling},
                          {"pivot_order", mumps.pivot_order},
                          {"scaling", mumps.scaling}}},
+                       {"mumps_check", {{"pivtol", check.pivtol}, {"pivot_order", check.pivot_order}}},
                        {"ldlt",
                         {{"scaling_sweeps", ldlt.scaling_sweeps},
                          {"regularisation", ldlt.regularisation},
                          {"residual_tolerance", ldlt.residual_tolerance},
-                         {"refinement_steps", ldlt.refinement_steps}}}};
+                         {"refinement_steps", ldlt.refinement_steps},
+                         {"growth_limit", ldlt.growth_limit}}}};
     std::printf("%s\n", head.dump().c_str());
     for (const auto& path : files) {
       const KktFile k = read_kkt(path);
@@ -324,6 +340,7 @@ int main(int argc, char** argv) {
                         {"check_inertia", k.check_inertia},
                         {"expected_negative", k.expected_negative},
                         {"mumps", run_mumps(k, a, mumps, repeat)},
+                        {"mumps_check", run_mumps(k, a, check, 1)},
                         {"ldlt", run_ldlt(k, a, ldlt, repeat)}};
       std::printf("%s\n", row.dump().c_str());
       std::fflush(stdout);

@@ -86,6 +86,7 @@ TEST(KktSolver, BadSettingsAreRefusedNamingTheKey) {
             std::string::npos);
   EXPECT_NE(message("kkt.ldlt.refinement_steps=-1").find("kkt.ldlt.refinement_steps"),
             std::string::npos);
+  EXPECT_NE(message("kkt.ldlt.growth_limit=0").find("kkt.ldlt.growth_limit"), std::string::npos);
   EXPECT_NE(message("kkt.dump.every=-2").find("kkt.dump.every"), std::string::npos);
 }
 

@@ -23,6 +23,7 @@ LdltSettings settings() {
   s.regularisation = 1e-8;
   s.residual_tolerance = 1e-12;
   s.refinement_steps = 5;
+  s.growth_limit = 1e11;
   return s;
 }
 
@@ -175,6 +176,27 @@ TEST(SparseLdlt, AnEmptyRowIsRefusedAndCounted) {
     if (t.rows[k] == 11 || t.cols[k] == 11) t.values[k] = 0.0;
   EXPECT_EQ(f.factor(t.values.data(), settings()), SparseLdlt::Factorised::kEmptyRow);
   EXPECT_EQ(f.empty_rows(), 1);
+}
+
+// Without pivoting, a pivot that is tiny but kept makes L huge: whichever of the two rows is
+// eliminated first, [η 1; 1 0] with η = 1e-12 (kept: δ = 1e-14) gives |D|·max|L|² ≥ 1/η = 1e12,
+// and the factors are reported unstable (kkt_solver.h takes such a matrix to MUMPS). The limit only
+// judges: above the growth, the same factors are done.
+TEST(SparseLdlt, ATinyPivotThatMakesLHugeIsReportedUnstable) {
+  Triplets t;
+  t.n = 2;
+  t.add(0, 0, 1e-12);
+  t.add(1, 0, 1.0);
+  t.add(1, 1, 0.0);
+  SparseLdlt f = analysed(t, 2);
+  LdltSettings s = settings();
+  s.regularisation = 1e-14;
+  EXPECT_EQ(f.factor(t.values.data(), s), SparseLdlt::Factorised::kUnstable);
+  EXPECT_GE(f.growth(), 0.99e12);
+  const double growth = f.growth();
+  s.growth_limit = 2.0 * growth;
+  EXPECT_EQ(f.factor(t.values.data(), s), SparseLdlt::Factorised::kDone);
+  EXPECT_EQ(f.growth(), growth);
 }
 
 TEST(SparseLdlt, ANanIsRefused) {

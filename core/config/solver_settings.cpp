@@ -74,6 +74,7 @@ LdltSettings ldlt_settings(const Settings& s) {
   if (l.regularisation >= 1) refuse(s, "kkt.ldlt.regularisation", "must be below 1");
   l.residual_tolerance = positive(s, "kkt.ldlt.residual_tolerance");
   l.refinement_steps = integer_at_least(s, "kkt.ldlt.refinement_steps", 0);
+  l.growth_limit = positive(s, "kkt.ldlt.growth_limit");
   return l;
 }
 

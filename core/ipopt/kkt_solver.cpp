@@ -170,6 +170,7 @@ class KktLinearSolver : public Ipopt::SparseSymLinearSolverInterface {
         // then regularises the constraint block (δc > 0).
         return Ipopt::SYMSOLVER_SINGULAR;
       case SparseLdlt::Factorised::kNotFinite:
+      case SparseLdlt::Factorised::kUnstable:  // factors too inaccurate to vouch for anything
         return on_mumps(ia, ja, nrhs, rhs, check_inertia, negative);
     }
     // A wrong inertia is taken as it is: either it is A's, or the regularisation R is as large

@@ -27,8 +27,10 @@
 //     kkt.ldlt.residual_tolerance, which vouches for the inertia too (sparse_ldlt.h). Later
 //     solves with the same factors (Ipopt refining its own solution) return what the factors
 //     give: Ipopt judges those residuals itself and asks for more quality when they are poor.
-//   - A matrix it cannot solve to the tolerance (or with a NaN or Inf in its values or
-//     pivots), and one whose solves Ipopt wants more accurate (IncreaseQuality), goes to MUMPS:
+//   - A matrix whose factors have grown above kkt.ldlt.growth_limit (a tiny pivot kept, L
+//     huge: without pivoting, what can make the inertia wrong; sparse_ldlt.h kUnstable), one
+//     it cannot solve to the tolerance (or with a NaN or Inf in its values or pivots), and one
+//     whose solves Ipopt wants more accurate (IncreaseQuality), goes to MUMPS:
 //     factorised again there, solved there until the next matrix, counted in
 //     KktCounts::fallbacks (and reported in the solve summary, runs.jsonl and solution.json).
 //     MUMPS's own IncreaseQuality (a larger pivot tolerance) then applies to that matrix.

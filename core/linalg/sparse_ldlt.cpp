@@ -127,6 +127,7 @@ void SparseLdlt::analyse(int n, int nnz, const int* rows, const int* cols, int b
   s_.assign(n, 1.0);
   row_norm_.assign(n, 0.0);
   d_.assign(n, 0.0);
+  column_max_.assign(n, 1.0);
   dinv_.assign(n, 0.0);
   y_.assign(n, 0.0);
   w1_.assign(n, 0.0);
@@ -175,6 +176,7 @@ SparseLdlt::Factorised SparseLdlt::factor(const double* values, const LdltSettin
 
   const double delta = settings.regularisation;
   negative_ = perturbed_ = regularised_ = 0;
+  std::fill(column_max_.begin(), column_max_.end(), 1.0);
   for (int k = 0; k < n_; ++k) {
     const double sk = s_[k];
     // Column k of S A S (rows <= k) into y_.
@@ -196,6 +198,7 @@ SparseLdlt::Factorised SparseLdlt::factor(const double* values, const LdltSettin
       const double l = yi * dinv_[i];
       d -= l * yi;
       lx_[end] = l;
+      column_max_[i] = std::max(column_max_[i], std::abs(l));
     }
     if (!std::isfinite(d)) {
       for (int q = rp_[k]; q < rp_[k + 1]; ++q) y_[ri_[q]] = 0.0;
@@ -209,7 +212,10 @@ SparseLdlt::Factorised SparseLdlt::factor(const double* values, const LdltSettin
     dinv_[k] = 1.0 / d;
     if (d < 0.0) ++negative_;
   }
-  return Factorised::kDone;
+  growth_ = 0.0;
+  for (int k = 0; k < n_; ++k)
+    growth_ = std::max(growth_, std::abs(d_[k]) * column_max_[k] * column_max_[k]);
+  return growth_ > settings.growth_limit ? Factorised::kUnstable : Factorised::kDone;
 }
 
 void SparseLdlt::apply_inverse(const double* b, double* x) {
