@@ -127,7 +127,8 @@ ElasticSettings elastic_settings(const Settings& s) {
   e.formulation = choice<ElasticFormulation>(s, "elastic.formulation",
                                               {{"lumped", ElasticFormulation::kLumped},
                                                {"per_pair", ElasticFormulation::kPerPair},
-                                               {"relaxed", ElasticFormulation::kRelaxed}});
+                                               {"relaxed", ElasticFormulation::kRelaxed},
+                                               {"barrier", ElasticFormulation::kBarrier}});
   e.zeta = positive(s, "elastic.zeta");
   e.zeta_factor = above_one(s, "elastic.zeta_factor");
   e.zeta_max = positive(s, "elastic.zeta_max");
@@ -139,6 +140,8 @@ ElasticSettings elastic_settings(const Settings& s) {
   e.sigma_factor = below_one(s, "elastic.sigma_factor");
   e.sigma_min = positive(s, "elastic.sigma_min");
   e.barrier_ratio = positive(s, "elastic.barrier_ratio");
+  e.barrier_sigma_factor = positive(s, "elastic.barrier_sigma_factor");
+  e.barrier_sigma_exponent = positive(s, "elastic.barrier_sigma_exponent");
   if (e.formulation == ElasticFormulation::kRelaxed && !e.polish)
     refuse(s, "elastic.polish",
            "formulation relaxed needs polish: its homotopy ends where the relaxation stops "

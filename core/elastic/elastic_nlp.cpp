@@ -13,6 +13,12 @@ void ElasticNlp::set_relaxation(double sigma) {
   set_constraint_bounds(m_, -kInf, sigma);
 }
 
+void ElasticNlp::set_live_relaxation(double sigma) {
+  DISCO_CHECK(formulation_ == ElasticFormulation::kBarrier && sigma >= 0,
+              "a live relaxation needs formulation barrier and sigma >= 0");
+  live_sigma_ = sigma;
+}
+
 ElasticNlp::ElasticNlp(const Mpcc& mpcc, ElasticFormulation formulation, double zeta)
     : mpcc_(mpcc), formulation_(formulation), zeta_(zeta) {
   n_ = mpcc.num_variables();
@@ -146,7 +152,7 @@ bool ElasticNlp::do_gradient(const ConstVectorRef& x, VectorRef grad) const {
 bool ElasticNlp::do_constraints(const ConstVectorRef& x, VectorRef c) const {
   if (!mpcc_.constraints(x.head(n_), c.head(m_))) return false;
   for (size_t k = 0; k < side_row_.size(); ++k) c[side_row_[k]] -= x[slack_[k]];
-  if (eps_ >= 0) c[m_] = product_sum(x) - x[eps_];
+  if (eps_ >= 0) c[m_] = product_sum(x) - live_sigma_ - x[eps_];
   return true;
 }
 

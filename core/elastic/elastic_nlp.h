@@ -22,6 +22,12 @@
 //      A relaxed (Scholtes-type) problem with sigma > 0 has an interior near the
 //      complementarity corner; ElasticSolver drives sigma to 0 together with Ipopt's
 //      barrier parameter (elastic_solver.h).
+//    * kBarrier:             sum_i u_i w_i - sigma <= eps,  eps >= 0,
+//                            objective f(z) + zeta * eps:
+//      the same relaxation with sigma in the row's function, not its bound
+//      (set_live_relaxation), so that it can move during one Ipopt run: ElasticSolver moves it
+//      with Ipopt's barrier parameter at every iteration (elastic_solver.h). Ipopt reads
+//      bounds once per solve, functions at every iterate.
 //
 // Variables: [z (n) | s (one per row side) | eps (kLumped, kRelaxed)].
 // Rows:      [c(z), side rows minus their slack (m) | the lumped row (kLumped, kRelaxed)].
@@ -35,7 +41,7 @@
 
 namespace disco {
 
-enum class ElasticFormulation { kLumped, kPerPair, kRelaxed };
+enum class ElasticFormulation { kLumped, kPerPair, kRelaxed, kBarrier };
 
 class ElasticNlp : public Nlp {
  public:
@@ -44,6 +50,9 @@ class ElasticNlp : public Nlp {
   void set_zeta(double zeta) { zeta_ = zeta; }
   // The lumped row's upper bound sigma (kLumped, kRelaxed; 0 when made).
   void set_relaxation(double sigma);
+  // kBarrier: the sigma its lumped row subtracts (0 when made).
+  void set_live_relaxation(double sigma);
+  double live_relaxation() const { return live_sigma_; }
   double zeta() const { return zeta_; }
   ElasticFormulation formulation() const { return formulation_; }
   const Mpcc& mpcc() const { return mpcc_; }
@@ -73,6 +82,7 @@ class ElasticNlp : public Nlp {
   std::vector<int> side_row_, slack_;  // row sides and their slack variables
   std::vector<int> u_, w_;             // per pair
   int eps_ = -1;
+  double live_sigma_ = 0.0;  // kBarrier
   // Derivatives of P(x) = sum_i u_i w_i: dP/dx_k = sum of x at `partner`
   // over the entries of k (CSR by gradient entry `grad_var_`).
   std::vector<int> grad_var_, grad_begin_, grad_partner_;

@@ -183,10 +183,22 @@ bool ElasticSolver::penalty_loop(ElasticNlp& nlp, NlpPoint start, double zeta,
                                  const ElasticRequest& request, MpccResult& out,
                                  const Record& record) const {
   double previous_residual = -1.0;
+  NlpLimits solve_limits = limits(request);
+  const bool follow = nlp.formulation() == ElasticFormulation::kBarrier;
+  if (follow) {
+    solve_limits.follow_barrier = [&nlp, this](double mu) {
+      const double sigma =
+          settings_.barrier_sigma_factor * std::pow(mu, settings_.barrier_sigma_exponent);
+      if (sigma == nlp.live_relaxation()) return false;
+      nlp.set_live_relaxation(sigma);
+      return true;
+    };
+  }
   while (true) {
     nlp.set_zeta(zeta);
-    const NlpResult r = ipopt_.solve(nlp, start, limits(request));
-    record(r, "elastic", zeta);
+    const NlpResult r = ipopt_.solve(nlp, start, solve_limits);
+    if (follow) nlp.set_live_relaxation(0.0);  // polish and the certificate see the MPCC
+    record(r, follow ? "barrier" : "elastic", zeta);
     if (!r.converged()) {
       out.status = unconverged_status(r);
       return false;

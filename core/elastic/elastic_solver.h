@@ -22,6 +22,12 @@
 //   (eps > sigma: the penalty prefers to violate it, as below the MPCC's optimal horizon).
 //   Only while it has not held at the first sigma is zeta raised (as in step 2: same stall
 //   rule, same zeta_max). Polish (step 3) then fixes the branch; the certificate decides.
+//   With formulation kBarrier, steps 1-2 are the penalty loop of step 1-2 with the relaxation
+//   inside each Ipopt run (after Raghunathan & Biegler's IPOPT-C and Leyffer, Lopez-Calva &
+//   Nocedal, where the relaxation moves with the barrier parameter): at every iteration
+//   sigma = barrier_sigma_factor * mu^barrier_sigma_exponent, with mu Ipopt's own
+//   (NlpLimits::follow_barrier; Ipopt then evaluates the current iterate again). One Ipopt
+//   run goes from a relaxed problem with an interior to the MPCC's corner, as mu goes to 0.
 //   3. polish (optional: elastic.polish): the branch NLP in which, for every
 //      pair, the smaller side at the elastic solution is fixed to zero, solved
 //      warm-started. Complementarity then holds exactly up to the constraint
@@ -77,6 +83,9 @@ struct ElasticSettings {
   double sigma_factor = 0.0;   // next = sigma * factor
   double sigma_min = 0.0;      // the last relaxation solved
   double barrier_ratio = 0.0;  // each relaxed solve ends at mu = ratio * sigma
+  // kBarrier only: sigma = factor * mu^exponent at every Ipopt iteration.
+  double barrier_sigma_factor = 0.0;
+  double barrier_sigma_exponent = 0.0;
 };
 
 // One call's own limits, as data: the solver keeps no per-call state.

@@ -2,6 +2,9 @@
 #include "core/ipopt/kkt_solver.h"
 
 #include <IpIpoptApplication.hpp>
+#include <IpIpoptCalculatedQuantities.hpp>
+#include <IpIpoptData.hpp>
+#include <IpIteratesVector.hpp>
 #include <IpTNLP.hpp>
 #include <spdlog/spdlog.h>
 
@@ -72,12 +75,16 @@ class TnlpAdapter : public Ipopt::TNLP {
     return caught([&] { return hessian(n, x, obj_factor, m, lambda, nele, irow, jcol, values); });
   }
 
-  bool intermediate_callback(Ipopt::AlgorithmMode, Index iter, Number, Number, Number, Number,
-                             Number, Number, Number, Number, Index,
-                             const Ipopt::IpoptData*, Ipopt::IpoptCalculatedQuantities*) override {
+  bool intermediate_callback(Ipopt::AlgorithmMode mode, Index iter, Number, Number, Number,
+                             Number, Number, Number, Number, Number, Index,
+                             const Ipopt::IpoptData* data,
+                             Ipopt::IpoptCalculatedQuantities* quantities) override {
     out_.iterations = iter;
     clock_iteration();  // the simulated clock advances before the deadline is read
     if (error_) return false;  // a callback failed on a bug: stop here
+    if (limits_.follow_barrier && mode == Ipopt::RegularMode && data != nullptr &&
+        quantities != nullptr && !caught([&] { return follow(iter, data, quantities); }))
+      return false;
     if (limits_.iterations > 0 && iter >= limits_.iterations) {
       stopped_ = NlpOutcome::kIterationCap;
       return false;
@@ -104,6 +111,23 @@ class TnlpAdapter : public Ipopt::TNLP {
   }
 
  private:
+  // NlpLimits::follow_barrier: the NLP changed at Ipopt's current mu, Ipopt's current iterate
+  // is replaced by a copy under new tags (IpoptData keeps everything else: W, mu, tau), so
+  // that Ipopt evaluates the new functions there.
+  bool follow(Index iter, const Ipopt::IpoptData* data, Ipopt::IpoptCalculatedQuantities* q) {
+    const double mu = data->curr_mu();
+    const Ipopt::SmartPtr<const Ipopt::Vector> before = q->curr_d();
+    if (!limits_.follow_barrier(mu)) return true;
+    auto* ip_data = const_cast<Ipopt::IpoptData*>(data);  // (the callback's data is Ipopt's own)
+    Ipopt::SmartPtr<Ipopt::IteratesVector> copy = ip_data->curr()->MakeNewIteratesVectorCopy();
+    ip_data->set_trial(copy);
+    ip_data->AcceptTrialPoint();
+    Ipopt::SmartPtr<Ipopt::Vector> change = q->curr_d()->MakeNewCopy();
+    change->Axpy(-1.0, *before);
+    out_.refreshes.push_back({static_cast<int>(iter), mu, change->Amax()});
+    return true;
+  }
+
   // Runs a callback's body; an exception is kept (the first one) and becomes `false`.
   template <class Body>
   bool caught(Body&& body) {

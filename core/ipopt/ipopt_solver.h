@@ -15,6 +15,7 @@
 #pragma once
 
 #include <memory>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -81,6 +82,23 @@ struct NlpLimits {
                                      // (core/util/clock.h; none: no limit);
                                      // an interrupt (core/util/interrupt.h) stops it too
   std::optional<BarrierStage> barrier;  // none: the configured mu strategy, to Ipopt's tol
+  // Not a limit: a model that follows the barrier parameter inside the solve (elastic
+  // formulation barrier, core/elastic/elastic_solver.h). Called at every iteration of Ipopt's
+  // regular mode (not in its restoration phase) with Ipopt's current mu, after Ipopt has
+  // evaluated the iterate and before it tests convergence; returns whether it changed the NLP's
+  // functions. If so, the solver makes Ipopt evaluate the current iterate again: it replaces
+  // Ipopt's current iterate by a copy (the same values under new tags, so none of Ipopt's
+  // cached values of the old functions is used again), and records a BarrierRefresh.
+  std::function<bool(double mu)> follow_barrier;
+};
+
+// One change of the NLP by NlpLimits::follow_barrier, as Ipopt saw it: its iteration, its
+// barrier parameter, and the largest change of its own inequality-constraint values d(x) at
+// the (unchanged) current iterate, read from Ipopt's calculated quantities before and after.
+struct BarrierRefresh {
+  int iteration = 0;
+  double mu = 0.0;
+  double d_change = 0.0;  // max_i |d_i(x) after − d_i(x) before|, in Ipopt's scaling of d
 };
 
 // How an NLP solve ended, in disco's terms.
@@ -122,6 +140,7 @@ struct NlpResult {
   int iterations = 0;
   double seconds = 0.0;
   KktCounts kkt;
+  std::vector<BarrierRefresh> refreshes;  // with NlpLimits::follow_barrier
   bool converged() const { return outcome == NlpOutcome::kConverged; }
 };
 
