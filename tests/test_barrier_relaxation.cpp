@@ -1,7 +1,8 @@
 // The complementarity relaxation moved with Ipopt's barrier parameter inside one Ipopt run
 // (elastic formulation barrier; core/elastic/elastic_nlp.h, core/ipopt/ipopt_solver.h
 // NlpLimits::follow_barrier; issue 34):
-//   - the live relaxation shifts the lumped row's value only (not its derivatives, not bounds);
+//   - one row per pair, u_i w_i - sigma <= eps, with exact derivatives;
+//   - the live relaxation shifts the pair rows' values only (not their derivatives, not bounds);
 //   - the hook is honest: at every iteration where it moves sigma, Ipopt's own inequality values
 //     at its current iterate move by exactly that much (read from Ipopt's calculated quantities
 //     before and after), sigma follows Ipopt's mu, and the solve still converges;
@@ -9,10 +10,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
+#include <string>
 
 #include "core/elastic/elastic_solver.h"
+#include "core/nlp/derivative_checker.h"
 #include "core/nlp/polynomial_program.h"
 #include "core/util/numbers.h"
+#include "tests/test_support_derivatives.h"
 #include "tests/test_support_mpcc.h"
 
 namespace disco {
@@ -33,7 +38,48 @@ PolynomialProgram scheel_scholtes() {
   return p;
 }
 
-TEST(BarrierRelaxation, TheLiveRelaxationShiftsTheLumpedRowsValueOnly) {
+// Three pairs, one with a row side: 0 <= x0 ⊥ x1 >= 0, 0 <= x2 ⊥ r0 >= 0, 0 <= x3 ⊥ x0 >= 0.
+PolynomialProgram three_pairs() {
+  PolynomialProgram p;
+  for (int k = 0; k < 4; ++k) p.add_variable(-kInf, kInf, 0.3 + k);
+  const Affine x0 = Affine::variable(0), x1 = Affine::variable(1), x2 = Affine::variable(2),
+               x3 = Affine::variable(3);
+  const int r0 = p.add_row(-kInf, kInf);
+  p.add(r0, 1.0, x0, x1);
+  p.add(r0, 1.0, x2 - Affine(0.5));
+  p.add(PolynomialProgram::kObjective, 1.0, x0, x1, x3);
+  p.add(PolynomialProgram::kObjective, 1.0, x2, x2);
+  p.add_pair(S::variable(0), S::variable(1));
+  p.add_pair(S::variable(2), S::row(r0));
+  p.add_pair(S::variable(3), S::variable(0));
+  p.finalize();
+  return p;
+}
+
+// The pair rows' first and second derivatives, against finite differences (Ceres-style
+// gradient checker, core/nlp/derivative_checker.h), at a live relaxation too.
+TEST(BarrierRelaxation, ThePairRowsDerivativesAreExact) {
+  const PolynomialProgram mpcc = three_pairs();
+  ElasticNlp e(mpcc, ElasticFormulation::kBarrier, 7.3);
+  EXPECT_EQ(e.num_constraints(), mpcc.num_constraints() + 3);  // one row per pair
+  std::mt19937 rng(34);
+  for (int trial = 0; trial < 6; ++trial) {
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    e.set_live_relaxation(trial * 0.1);
+    const Vector x = test_support::random_vector(rng, e.num_variables(), -2.0, 2.0);
+    const Vector lambda = test_support::random_vector(rng, e.num_constraints(), -3.0, 3.0);
+    const auto report = check_derivatives(e, x, 0.7, lambda);
+    ASSERT_NO_FATAL_FAILURE(test_support::expect_exact_derivatives(report));
+  }
+  // The lift: eps is the largest product, every pair row then at most 0.
+  e.set_live_relaxation(0.0);
+  const Vector x = e.lift(mpcc.initial_point());
+  Vector c(e.num_constraints());
+  ASSERT_TRUE(e.constraints(x, c));
+  EXPECT_EQ(c.tail(3).maxCoeff(), 0.0);
+}
+
+TEST(BarrierRelaxation, TheLiveRelaxationShiftsThePairRowsValuesOnly) {
   const PolynomialProgram mpcc = scheel_scholtes();
   ElasticNlp nlp(mpcc, ElasticFormulation::kBarrier, 10.0);
   const Vector x = nlp.lift(mpcc.initial_point());

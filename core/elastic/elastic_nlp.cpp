@@ -45,9 +45,12 @@ ElasticNlp::ElasticNlp(const Mpcc& mpcc, ElasticFormulation formulation, double 
     u_.push_back(side_var(p.g));
     w_.push_back(side_var(p.h));
   }
-  const bool lumped_row = formulation_ != ElasticFormulation::kPerPair;
-  if (lumped_row) eps_ = nvar++;
-  const int nrow = m_ + (lumped_row ? 1 : 0);
+  const bool lumped_row = formulation_ == ElasticFormulation::kLumped ||
+                          formulation_ == ElasticFormulation::kRelaxed;
+  pair_rows_ = formulation_ == ElasticFormulation::kBarrier;
+  if (lumped_row || pair_rows_) eps_ = nvar++;
+  const int np = static_cast<int>(pairs.size());
+  const int nrow = m_ + (lumped_row ? 1 : 0) + (pair_rows_ ? np : 0);
 
   z_lo_.resize(nvar);
   z_hi_.resize(nvar);
@@ -72,8 +75,8 @@ ElasticNlp::ElasticNlp(const Mpcc& mpcc, ElasticFormulation formulation, double 
   if (eps_ >= 0) {
     z_lo_[eps_] = 0.0;
     z_hi_[eps_] = kInf;
-    c_lo_[m_] = -kInf;
-    c_hi_[m_] = 0.0;
+    c_lo_.tail(nrow - m_).setConstant(-kInf);
+    c_hi_.tail(nrow - m_).setZero();
   }
 
   // Jacobian: the MPCC's entries, then -1 per slack, then the lumped row.
@@ -92,7 +95,14 @@ ElasticNlp::ElasticNlp(const Mpcc& mpcc, ElasticFormulation formulation, double 
     grad_partner_.insert(grad_partner_.end(), list.begin(), list.end());
     grad_begin_.push_back(static_cast<int>(grad_partner_.size()));
   }
-  if (eps_ >= 0) {
+  if (pair_rows_) {
+    for (int i = 0; i < np; ++i) {
+      DISCO_CHECK(u_[i] != w_[i], "a pair's two sides are one variable");
+      jac_.add(m_ + i, u_[i]);
+      jac_.add(m_ + i, w_[i]);
+      jac_.add(m_ + i, eps_);
+    }
+  } else if (eps_ >= 0) {
     for (int var : grad_var_) jac_.add(m_, var);
     jac_.add(m_, eps_);
   }
@@ -118,7 +128,11 @@ Vector ElasticNlp::lift(const ConstVectorRef& z) const {
   Vector c(m_);
   if (!mpcc_.constraints(z, c)) c.setZero();
   for (size_t k = 0; k < side_row_.size(); ++k) x[slack_[k]] = c[side_row_[k]];
-  if (eps_ >= 0) x[eps_] = std::max(0.0, product_sum(x));
+  if (pair_rows_) {
+    for (size_t i = 0; i < u_.size(); ++i) x[eps_] = std::max(x[eps_], x[u_[i]] * x[w_[i]]);
+  } else if (eps_ >= 0) {
+    x[eps_] = std::max(0.0, product_sum(x));
+  }
   return x;
 }
 
@@ -152,7 +166,12 @@ bool ElasticNlp::do_gradient(const ConstVectorRef& x, VectorRef grad) const {
 bool ElasticNlp::do_constraints(const ConstVectorRef& x, VectorRef c) const {
   if (!mpcc_.constraints(x.head(n_), c.head(m_))) return false;
   for (size_t k = 0; k < side_row_.size(); ++k) c[side_row_[k]] -= x[slack_[k]];
-  if (eps_ >= 0) c[m_] = product_sum(x) - live_sigma_ - x[eps_];
+  if (pair_rows_) {
+    for (size_t i = 0; i < u_.size(); ++i)
+      c[m_ + i] = x[u_[i]] * x[w_[i]] - live_sigma_ - x[eps_];
+  } else if (eps_ >= 0) {
+    c[m_] = product_sum(x) - x[eps_];
+  }
   return true;
 }
 
@@ -160,7 +179,13 @@ bool ElasticNlp::do_jacobian(const ConstVectorRef& x, VectorRef values) const {
   if (!mpcc_.jacobian(x.head(n_), values.head(mpcc_jac_nnz_))) return false;
   int e = mpcc_jac_nnz_;
   for (size_t k = 0; k < side_row_.size(); ++k) values[e++] = -1.0;
-  if (eps_ >= 0) {
+  if (pair_rows_) {
+    for (size_t i = 0; i < u_.size(); ++i) {
+      values[e++] = x[w_[i]];
+      values[e++] = x[u_[i]];
+      values[e++] = -1.0;
+    }
+  } else if (eps_ >= 0) {
     for (size_t k = 0; k < grad_var_.size(); ++k) {
       double d = 0.0;
       for (int i = grad_begin_[k]; i < grad_begin_[k + 1]; ++i) d += x[grad_partner_[i]];
@@ -176,10 +201,10 @@ bool ElasticNlp::do_hessian(const ConstVectorRef& x, double sigma, const ConstVe
   values.setZero();
   if (!mpcc_.hessian(x.head(n_), sigma, lambda.head(m_), values.head(mpcc_hess_nnz_)))
     return false;
-  // d2/du dw of weight * u * w: the lumped row's multiplier, or sigma * zeta.
+  // d2/du dw of weight * u * w: the pair's row's multiplier, the lumped row's, or sigma * zeta.
   const double weight = eps_ >= 0 ? lambda[m_] : sigma * zeta_;
   for (size_t i = 0; i < u_.size(); ++i)
-    values[pair_hess_entry_[i]] += weight * pair_hess_mult_[i];
+    values[pair_hess_entry_[i]] += (pair_rows_ ? lambda[m_ + i] : weight) * pair_hess_mult_[i];
   return true;
 }
 

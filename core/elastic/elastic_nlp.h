@@ -22,15 +22,17 @@
 //      A relaxed (Scholtes-type) problem with sigma > 0 has an interior near the
 //      complementarity corner; ElasticSolver drives sigma to 0 together with Ipopt's
 //      barrier parameter (elastic_solver.h).
-//    * kBarrier:             sum_i u_i w_i - sigma <= eps,  eps >= 0,
+//    * kBarrier:             u_i w_i - sigma <= eps for every pair i,  eps >= 0,
 //                            objective f(z) + zeta * eps:
-//      the same relaxation with sigma in the row's function, not its bound
-//      (set_live_relaxation), so that it can move during one Ipopt run: ElasticSolver moves it
-//      with Ipopt's barrier parameter at every iteration (elastic_solver.h). Ipopt reads
-//      bounds once per solve, functions at every iterate.
+//      a Scholtes relaxation per pair (as in IPOPT-C and Leyffer, Lopez-Calva & Nocedal)
+//      with one elastic eps (an l-infinity elastic mode), sigma in the rows' functions, not
+//      their bounds (set_live_relaxation), so that it can move during one Ipopt run:
+//      ElasticSolver moves it with Ipopt's barrier parameter at every iteration
+//      (elastic_solver.h). Ipopt reads bounds once per solve, functions at every iterate.
 //
-// Variables: [z (n) | s (one per row side) | eps (kLumped, kRelaxed)].
-// Rows:      [c(z), side rows minus their slack (m) | the lumped row (kLumped, kRelaxed)].
+// Variables: [z (n) | s (one per row side) | eps (kLumped, kRelaxed, kBarrier)].
+// Rows:      [c(z), side rows minus their slack (m) | the lumped row (kLumped, kRelaxed) |
+//             one row per pair (kBarrier)].
 // The MPCC's Jacobian and Hessian entries come first, in the MPCC's order, so
 // its values are written in place into the head of each array.
 #pragma once
@@ -50,7 +52,7 @@ class ElasticNlp : public Nlp {
   void set_zeta(double zeta) { zeta_ = zeta; }
   // The lumped row's upper bound sigma (kLumped, kRelaxed; 0 when made).
   void set_relaxation(double sigma);
-  // kBarrier: the sigma its lumped row subtracts (0 when made).
+  // kBarrier: the sigma its pair rows subtract (0 when made).
   void set_live_relaxation(double sigma);
   double live_relaxation() const { return live_sigma_; }
   double zeta() const { return zeta_; }
@@ -82,6 +84,7 @@ class ElasticNlp : public Nlp {
   std::vector<int> side_row_, slack_;  // row sides and their slack variables
   std::vector<int> u_, w_;             // per pair
   int eps_ = -1;
+  bool pair_rows_ = false;   // kBarrier: one row per pair
   double live_sigma_ = 0.0;  // kBarrier
   // Derivatives of P(x) = sum_i u_i w_i: dP/dx_k = sum of x at `partner`
   // over the entries of k (CSR by gradient entry `grad_var_`).

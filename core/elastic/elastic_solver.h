@@ -22,8 +22,8 @@
 //   (eps > sigma: the penalty prefers to violate it, as below the MPCC's optimal horizon).
 //   Only while it has not held at the first sigma is zeta raised (as in step 2: same stall
 //   rule, same zeta_max). Polish (step 3) then fixes the branch; the certificate decides.
-//   With formulation kBarrier, steps 1-2 are the penalty loop of step 1-2 with the relaxation
-//   inside each Ipopt run (after Raghunathan & Biegler's IPOPT-C and Leyffer, Lopez-Calva &
+//   With formulation kBarrier (a relaxation row per pair), steps 1-2 are the penalty loop of
+//   steps 1-2 with the relaxation inside each Ipopt run (after Raghunathan & Biegler's IPOPT-C and Leyffer, Lopez-Calva &
 //   Nocedal, where the relaxation moves with the barrier parameter): at every iteration
 //   sigma = barrier_sigma_factor * mu^barrier_sigma_exponent, with mu Ipopt's own
 //   (NlpLimits::follow_barrier; Ipopt then evaluates the current iterate again). One Ipopt
