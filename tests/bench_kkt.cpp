@@ -16,7 +16,9 @@
 //     (scripts/bench_kkt then calls MUMPS's ambiguous).
 //   - ldlt: disco's SparseLdlt (core/linalg/sparse_ldlt.h) with the kkt.ldlt settings; analyse()
 //     once, factor() and solve() (which refines) timed. Inertia: negative(); status "unstable"
-//     when its growth() is above kkt.ldlt.growth_limit (disco gives that matrix to MUMPS).
+//     when its growth() is above kkt.ldlt.growth_limit (disco gives that matrix to MUMPS);
+//     smallest_eigenvalue and certified: the inertia certificate (kkt.ldlt.certificate), which
+//     disco asks for when the inertia is not the one Ipopt wants (uncertified: to MUMPS).
 // Each solve's x is checked here, the same way for both: the normwise backward error
 // ‖b − A x‖∞ / (‖A‖∞ ‖x‖∞ + ‖b‖∞) against the file's right-hand side b (null when x is not finite).
 //
@@ -272,6 +274,10 @@ json run_ldlt(const KktFile& k, const Symmetric& a, const LdltSettings& settings
   out["growth"] = ldlt.growth();
   out["factor_entries"] = ldlt.factor_entries();
   out["flops"] = ldlt.flops();
+  out["regularisation_norm"] = ldlt.regularisation_norm();
+  if (settings.certificate_iterations > 0)
+    out["smallest_eigenvalue"] = ldlt.smallest_eigenvalue(settings.certificate_iterations);
+  out["certified"] = ldlt.inertia_certified();
   std::vector<double> x;
   double reported = 0.0;
   out["solve_ms"] = median_ms(
@@ -328,7 +334,9 @@ int main(int argc, char** argv) {
                          {"regularisation", ldlt.regularisation},
                          {"residual_tolerance", ldlt.residual_tolerance},
                          {"refinement_steps", ldlt.refinement_steps},
-                         {"growth_limit", ldlt.growth_limit}}}};
+                         {"growth_limit", ldlt.growth_limit},
+                         {"certificate_iterations", ldlt.certificate_iterations},
+                         {"certificate_margin", ldlt.certificate_margin}}}};
     std::printf("%s\n", head.dump().c_str());
     for (const auto& path : files) {
       const KktFile k = read_kkt(path);

@@ -87,6 +87,10 @@ TEST(KktSolver, BadSettingsAreRefusedNamingTheKey) {
   EXPECT_NE(message("kkt.ldlt.refinement_steps=-1").find("kkt.ldlt.refinement_steps"),
             std::string::npos);
   EXPECT_NE(message("kkt.ldlt.growth_limit=0").find("kkt.ldlt.growth_limit"), std::string::npos);
+  EXPECT_NE(message("kkt.ldlt.certificate.iterations=-1").find("kkt.ldlt.certificate.iterations"),
+            std::string::npos);
+  EXPECT_NE(message("kkt.ldlt.certificate.margin=0.5").find("kkt.ldlt.certificate.margin"),
+            std::string::npos);
   EXPECT_NE(message("kkt.dump.every=-2").find("kkt.dump.every"), std::string::npos);
 }
 
@@ -98,6 +102,23 @@ TEST(KktSolver, TheObjectiveReductionEndsCertifiedWithTheLdlt) {
   const SceneSolve solve = solve_scene(scene, settings);
   ASSERT_EQ(solve.result.status, MpccStatus::kSolved);
   EXPECT_TRUE(solve.result.best.certificate.within(1e-6, 1e-6));
+}
+
+// With the inertia certificate on and a margin no estimate can pass, every wrong inertia of the
+// LDLᵀ goes to MUMPS, counted; the solve still converges. (The contact problem's KKT matrices
+// are indefinite at some iterations: without the certificate, Ipopt meets wrong inertias.)
+TEST(KktSolver, AnUncertifiedWrongInertiaGoesToMumpsCounted) {
+  const Contact c;
+  const NlpResult plain = c.solve(settings_with({"kkt.solver=ldlt"}));
+  ASSERT_TRUE(plain.converged());
+  const NlpResult strict = c.solve(settings_with(
+      {"kkt.solver=ldlt", "kkt.ldlt.certificate.iterations=3", "kkt.ldlt.certificate.margin=1e300"}));
+  ASSERT_TRUE(strict.converged());
+  EXPECT_GT(strict.kkt.fallbacks, plain.kkt.fallbacks);
+  const NlpResult usual = c.solve(settings_with(
+      {"kkt.solver=ldlt", "kkt.ldlt.certificate.iterations=5", "kkt.ldlt.certificate.margin=2"}));
+  ASSERT_TRUE(usual.converged());
+  EXPECT_LT(usual.kkt.fallbacks, strict.kkt.fallbacks);
 }
 
 TEST(KktSolver, TheDumpWritesEveryKthMatrixInTheDocumentedFormat) {

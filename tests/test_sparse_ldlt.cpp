@@ -24,6 +24,8 @@ LdltSettings settings() {
   s.residual_tolerance = 1e-12;
   s.refinement_steps = 5;
   s.growth_limit = 1e11;
+  s.certificate_iterations = 5;
+  s.certificate_margin = 2.0;
   return s;
 }
 
@@ -197,6 +199,60 @@ TEST(SparseLdlt, ATinyPivotThatMakesLHugeIsReportedUnstable) {
   s.growth_limit = 2.0 * growth;
   EXPECT_EQ(f.factor(t.values.data(), s), SparseLdlt::Factorised::kDone);
   EXPECT_EQ(f.growth(), growth);
+}
+
+// Without scaling, M = A + R with R = −δ on the empty constraint diagonal: the estimate of M's
+// smallest |eigenvalue| is never below the dense one, and close to it once converged.
+TEST(SparseLdlt, TheSmallestEigenvalueEstimateIsNeverBelowTheTrueOne) {
+  LdltSettings s = settings();
+  s.scaling_sweeps = 0;
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    const Triplets t = kkt(30, 10, 0.0, seed % 2 == 0, seed);
+    SparseLdlt f = analysed(t, 30);
+    ASSERT_EQ(f.factor(t.values.data(), s), SparseLdlt::Factorised::kDone);
+    ASSERT_EQ(f.perturbed(), 0);
+    EXPECT_EQ(f.regularisation_norm(), s.regularisation);
+    Eigen::MatrixXd m = t.dense();
+    for (int i = 30; i < 40; ++i) m(i, i) -= s.regularisation;
+    const double truth = smallest_singular_value(m);
+    for (int iterations : {1, 2, 5}) {
+      EXPECT_GE(f.smallest_eigenvalue(iterations), truth * (1 - 1e-10))
+          << "seed " << seed << ", " << iterations << " iterations";
+    }
+    EXPECT_LE(f.smallest_eigenvalue(200), 1.05 * truth) << "seed " << seed;
+  }
+}
+
+// A = [1, 1; 1, 1 − 1e-15], both rows primal, has det(A) = −1e-15 < 0: one negative
+// eigenvalue, of order 1e-15. Its second pivot falls below the floor and becomes +δ, so the
+// factors' inertia (no negative eigenvalue) is not A's. The certificate refuses it; it vouches
+// for a KKT matrix whose eigenvalues are far from zero.
+TEST(SparseLdlt, AnInertiaTheRegularisationDecidesIsNotCertified) {
+  Triplets flipped;
+  flipped.n = 2;
+  flipped.add(0, 0, 1.0);
+  flipped.add(1, 0, 1.0);
+  flipped.add(1, 1, 1.0 - 1e-15);
+  SparseLdlt f = analysed(flipped, 2);
+  LdltSettings s = settings();
+  ASSERT_EQ(f.factor(flipped.values.data(), s), SparseLdlt::Factorised::kDone);
+  ASSERT_EQ(f.perturbed(), 1);
+  EXPECT_EQ(f.negative(), 0);
+  EXPECT_FALSE(f.inertia_certified());
+  s.certificate_iterations = 0;  // no certificate asked for: the factors' inertia stands
+  ASSERT_EQ(f.factor(flipped.values.data(), s), SparseLdlt::Factorised::kDone);
+  EXPECT_TRUE(f.inertia_certified());
+
+  Triplets kkt_2x2;  // [1, 1; 1, 0]: eigenvalues (1 ± √5) / 2
+  kkt_2x2.n = 2;
+  kkt_2x2.add(0, 0, 1.0);
+  kkt_2x2.add(1, 0, 1.0);
+  kkt_2x2.add(1, 1, 0.0);
+  SparseLdlt g = analysed(kkt_2x2, 1);
+  ASSERT_EQ(g.factor(kkt_2x2.values.data(), settings()), SparseLdlt::Factorised::kDone);
+  EXPECT_EQ(g.regularised(), 1);
+  EXPECT_EQ(g.negative(), 1);
+  EXPECT_TRUE(g.inertia_certified());
 }
 
 TEST(SparseLdlt, ANanIsRefused) {

@@ -75,6 +75,10 @@ LdltSettings ldlt_settings(const Settings& s) {
   l.residual_tolerance = positive(s, "kkt.ldlt.residual_tolerance");
   l.refinement_steps = integer_at_least(s, "kkt.ldlt.refinement_steps", 0);
   l.growth_limit = positive(s, "kkt.ldlt.growth_limit");
+  l.certificate_iterations = integer_at_least(s, "kkt.ldlt.certificate.iterations", 0);
+  l.certificate_margin = s.number("kkt.ldlt.certificate.margin");
+  if (!(l.certificate_margin >= 1))  // below 1, Weyl's inequality no longer vouches
+    refuse(s, "kkt.ldlt.certificate.margin", "must be >= 1");
   return l;
 }
 

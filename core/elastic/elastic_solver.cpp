@@ -55,7 +55,7 @@ namespace {
 // One Ipopt solve's limits under a request (a solve started past the deadline stops at its
 // first iteration).
 NlpLimits limits(const ElasticRequest& request) {
-  return NlpLimits{request.iteration_limit, request.deadline, std::nullopt};
+  return NlpLimits{request.iteration_limit, request.deadline, std::nullopt, {}};
 }
 bool past(const ElasticRequest& request) {
   return request.deadline && Clock::now() >= *request.deadline;

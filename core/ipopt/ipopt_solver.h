@@ -121,8 +121,8 @@ struct KktCounts {
                            // matrix with an empty row included)
   int answered = 0;        // answered "singular" without factorising (kkt.perturbed_first)
   // kkt.solver ldlt: the matrices MUMPS factorised because disco's LDLᵀ could not solve them
-  // to kkt.ldlt.residual_tolerance (or met a NaN or Inf), or because Ipopt asked for more
-  // quality; counted in factorisations too.
+  // to kkt.ldlt.residual_tolerance (or met a NaN or Inf), could not certify a wrong inertia,
+  // or because Ipopt asked for more quality; counted in factorisations too.
   int fallbacks = 0;
   KktCounts& operator+=(const KktCounts& o) {
     factorisations += o.factorisations;

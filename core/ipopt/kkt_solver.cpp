@@ -173,11 +173,13 @@ class KktLinearSolver : public Ipopt::SparseSymLinearSolverInterface {
       case SparseLdlt::Factorised::kUnstable:  // factors too inaccurate to vouch for anything
         return on_mumps(ia, ja, nrhs, rhs, check_inertia, negative);
     }
-    // A wrong inertia is taken as it is: either it is A's, or the regularisation R is as large
-    // as A's smallest eigenvalue (sparse_ldlt.h), A nearly singular, and Ipopt's answer to
-    // both, a larger perturbation, is safe. A right one is taken only once a solve has
-    // reached the tolerance, which vouches for it.
-    if (check_inertia && ldlt_.negative() != negative) return Ipopt::SYMSOLVER_WRONG_INERTIA;
+    // A wrong inertia is answered only when certified (below); one that may be the
+    // regularisation's goes to MUMPS. A right one is taken only once a solve has reached the
+    // tolerance, which vouches for it.
+    if (check_inertia && ldlt_.negative() != negative) {
+      if (!ldlt_.inertia_certified()) return on_mumps(ia, ja, nrhs, rhs, check_inertia, negative);
+      return Ipopt::SYMSOLVER_WRONG_INERTIA;
+    }
     return solve_ldlt(ia, ja, nrhs, rhs, check_inertia, negative);
   }
 

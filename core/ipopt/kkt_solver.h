@@ -16,8 +16,15 @@
 // augmented system x, s, c, d). MUMPS's overhead per factorisation (11 ms on n ≈ 11 k for
 // 5 MFlop; ~6 ms for a diagonal matrix) is what the LDLᵀ saves (scripts/results/bench_kkt.md).
 //   - A factorisation whose inertia is not the one Ipopt asks for is answered "wrong inertia"
-//     at once: either it is A's, or A is within the regularisation of singular; Ipopt's answer
-//     to both (a larger perturbation) is safe.
+//     at once, or, with kkt.ldlt.certificate.iterations > 0 (not the default: core/README.md,
+//     "Why the defaults"), only when that inertia is certified: the smallest |eigenvalue| of the regularised scaled matrix
+//     M = S A S + R, estimated by kkt.ldlt.certificate.iterations steps of inverse iteration
+//     with the factors (SparseLdlt::smallest_eigenvalue), is above kkt.ldlt.certificate.margin
+//     × ‖R‖₂. By Weyl's inequality every eigenvalue of S A S is then within ‖R‖₂ of one of M
+//     with the same sign, and S A S has A's inertia (Sylvester). Otherwise an eigenvalue of A
+//     may lie within the regularisation of zero, its sign decided by R: the matrix goes to
+//     MUMPS (counted). On the bench_kkt corpus this is what made the inertia differ from
+//     MUMPS's on the two matrices of B3_s1 (A's eigenvalue 1e-11 against δ = 1e-8).
 //   - A matrix with a row without a nonzero (a constraint whose variables are all fixed, with
 //     δc = 0, as in a polish solve) is answered "singular", as MUMPS finds it (a zero pivot):
 //     Ipopt then regularises the constraint block. (Without that, the LDLᵀ's regularisation
