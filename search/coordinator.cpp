@@ -3,7 +3,11 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
 #include <cstdio>
+#include <fstream>
 
 #include "core/util/interrupt.h"
 #include "core/util/numbers.h"
@@ -41,17 +45,63 @@ std::string clock_text(double s) {
 
 Coordinator::Coordinator(const SearchPlan& plan, const std::string& out_dir, std::uint64_t seed,
                          double time_limit, bool resumed, bool share_incumbent,
-                         const GuessClassFunction& guess_class)
+                         const GuessClassFunction& guess_class, const ScreenSettings& screen)
     : plan_(plan),
       share_(share_incumbent),
       t0_(Clock::now()),
       record_(plan, out_dir, seed, resumed, share_incumbent),
-      queue_(plan, time_limit, record_.done(), guess_class),
+      queue_(plan, time_limit, record_.done(), guess_class, screen, record_.screened_done()),
       incumbent_(plan.scenes.size(), kInf),
-      improved_(plan.scenes.size(), false) {
+      improved_(plan.scenes.size(), false),
+      screen_(screen) {
   for (std::size_t s = 0; s < plan.scenes.size(); ++s)  // a resumed run's bests
     if (const auto b = record_.best_value(static_cast<int>(s))) lower_incumbent(static_cast<int>(s), *b);
+  advance_stages(seconds());  // a resumed run's scenes whose screens all ended
   record_.write_best(queue_, seconds(), interrupt_requested());
+}
+
+void Coordinator::advance_stages(double now) {
+  if (!screen_.on()) return;
+  for (std::size_t i = 0; i < plan_.scenes.size(); ++i) {
+    const int s = static_cast<int>(i);
+    if (queue_.refined(s) || queue_.screens_open(s, now)) continue;
+    const std::string& name = plan_.scenes[i].scene.name;
+    std::vector<Screened> screened;
+    for (const auto& [k, o] : record_.screened(s)) {
+      const std::string key = o.best_class.is_object() ? o.best_class.value("key", "") : "";
+      screened.push_back({k, o.certified() ? o.value : std::numeric_limits<double>::quiet_NaN(), key});
+    }
+    std::vector<int> chosen = refine_choice(screened, screen_.refine_count);
+    // A resumed run also finishes the refines an earlier run chose under a time limit, from
+    // the screens it had then: they are recorded, and one cut short runs again.
+    for (int k : record_.ran(s))
+      if (std::find(chosen.begin(), chosen.end(), k) == chosen.end()) chosen.push_back(k);
+    std::vector<Task> tasks;
+    std::string words;
+    const std::map<int, StartOutcome> screens = record_.screened(s);
+    for (int k : chosen) {
+      const auto it = screens.find(k);
+      words += fmt::format("{}{} ({:.6f})", words.empty() ? "" : ", ", k,
+                           it != screens.end() ? it->second.value : std::nan(""));
+      if (record_.done().count({s, k})) continue;  // refined in an earlier run
+      const std::string file = record_.screened_file(name, k);
+      std::ifstream in(file);
+      json doc = in ? json::parse(in, nullptr, false) : json();
+      if (!doc.is_object()) {
+        spdlog::warn("{}: start {}'s screened answer {} cannot be read: it is not refined", name, k, file);
+        continue;
+      }
+      Task t;
+      t.scene = s;
+      t.start = k;
+      t.stage = Stage::kRefine;
+      t.guess = std::move(doc);
+      tasks.push_back(std::move(t));
+    }
+    spdlog::info("{}: {} start(s) screened, refining {}", name, screened.size(),
+                 chosen.empty() ? std::string("none (no certified screen)") : words);
+    queue_.add_refines(s, static_cast<int>(chosen.size()), tasks);
+  }
 }
 
 void Coordinator::lower_incumbent(int s, double value) {
@@ -79,10 +129,21 @@ std::vector<Coordinator::Outgoing> Coordinator::take_outbox() {
   std::lock_guard<std::mutex> lock(mutex_);
   std::vector<Outgoing> out;
   for (const auto& [task, r] : queue_.running())
-    if (improved_[task.first] && r.rank != 0)
+    if (improved_[task.first] && r.rank != 0 && r.stage != Stage::kScreen)
       out.push_back({r.rank, MessageKind::kIncumbent,
                      json{{"scene", task.first}, {"value", incumbent_[task.first]}}.dump()});
   std::fill(improved_.begin(), improved_.end(), false);
+  for (auto it = waiting_.begin(); it != waiting_.end();) {
+    if (const auto t = next_locked(*it)) {
+      out.push_back({*it, MessageKind::kTask, t->to_json().dump()});
+    } else if (interrupt_requested() || !queue_.refines_to_come(seconds())) {
+      out.push_back({*it, MessageKind::kStop, ""});
+    } else {
+      ++it;
+      continue;
+    }
+    it = waiting_.erase(it);
+  }
   return out;
 }
 
@@ -98,10 +159,23 @@ int Coordinator::scene_index(const std::string& name) const {
 
 std::optional<Task> Coordinator::next(int rank) {
   std::lock_guard<std::mutex> lock(mutex_);
+  return next_locked(rank);
+}
+
+std::optional<Task> Coordinator::next_locked(int rank) {
   if (interrupt_requested()) return std::nullopt;
-  auto task = queue_.next(rank, seconds());
-  if (task) task->incumbent = incumbent_[task->scene];
+  const double now = seconds();
+  advance_stages(now);
+  auto task = queue_.next(rank, now);
+  if (task) task->incumbent = task->stage == Stage::kScreen ? kInf : incumbent_[task->scene];
   return task;
+}
+
+bool Coordinator::await_work() {
+  std::unique_lock<std::mutex> lock(mutex_);
+  if (interrupt_requested() || !queue_.refines_to_come(seconds())) return false;
+  recorded_.wait_for(lock, std::chrono::milliseconds(200));
+  return true;
 }
 
 void Coordinator::record(StartOutcome o, const json* solution) {
@@ -109,22 +183,32 @@ void Coordinator::record(StartOutcome o, const json* solution) {
   const double now = seconds();
   o.finished_s = now;
   const int s = scene_index(o.scene);
+  const bool screen = o.stage == Stage::kScreen;
+  // A screen cut by the screening share did not meet the search's or the scene's limit.
   if (s >= 0)
     queue_.finished(s, o.start,
-                    o.status == StartStatus::kTimeLimit ? o.budget_source : BudgetSource::kNone);
+                    o.status == StartStatus::kTimeLimit && !screen ? o.budget_source : BudgetSource::kNone);
   record_.record(o, solution, now, s >= 0 ? queue_.scene_started(s) : 0.0);
-  if (o.certified()) lower_incumbent(s, o.value);
+  if (o.certified() && !screen) lower_incumbent(s, o.value);
+  advance_stages(now);
   record_.write_best(queue_, now, interrupt_requested());
-  spdlog::info("[{}/{}] {} start {} (rank {}): {} in {:.1f} s | best {} | {}", record_.finished(),
-               queue_.total(), o.scene, o.start, o.rank, outcome_words(o), o.seconds,
-               record_.best_summary(s), clock_locked());
+  spdlog::info("[{}/{}] {} start {}{} (rank {}): {} in {:.1f} s | best {} | {}", record_.finished(),
+               queue_.total(), o.scene, o.start,
+               o.stage == Stage::kFull ? std::string() : fmt::format(" {}", to_string(o.stage)), o.rank,
+               outcome_words(o), o.seconds, record_.best_summary(s), clock_locked());
+  recorded_.notify_all();
 }
 
 Coordinator::Reply Coordinator::on_result(int rank, const std::string& body) {
   const json msg = json::parse(body);
   if (msg.contains("outcome"))
     record(StartOutcome::from_json(msg["outcome"]), msg.contains("solution") ? &msg["solution"] : nullptr);
-  if (const auto t = next(rank)) return {MessageKind::kTask, t->to_json().dump()};
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (const auto t = next_locked(rank)) return {MessageKind::kTask, t->to_json().dump()};
+  if (!interrupt_requested() && queue_.refines_to_come(seconds())) {
+    waiting_.insert(rank);
+    return {MessageKind::kStop, "", true};
+  }
   return {MessageKind::kStop, ""};
 }
 
@@ -149,8 +233,10 @@ std::string Coordinator::status_text() {
   const double now = seconds();
   std::string running;
   for (const auto& [task, r] : queue_.running())
-    running += fmt::format("{}{} #{} r{} {:.0f}s", running.empty() ? "" : ", ",
-                           plan_.scenes[task.first].scene.name, task.second, r.rank, now - r.handed_s);
+    running += fmt::format("{}{} #{}{} r{} {:.0f}s", running.empty() ? "" : ", ",
+                           plan_.scenes[task.first].scene.name, task.second,
+                           r.stage == Stage::kFull ? std::string() : fmt::format(" {}", to_string(r.stage)), r.rank,
+                           now - r.handed_s);
   return fmt::format("[{}/{}] {} | best {} | running: {}", record_.finished(), queue_.total(),
                      clock_locked(), record_.best_summary(-1), running.empty() ? "-" : running);
 }

@@ -21,10 +21,19 @@
 // an incumbent improves, take_outbox() gives one kIncumbent message for every worker rank
 // then running a start of that scene (rank 0's own worker reads incumbent() instead). Not
 // shared, the incumbent is +inf everywhere and no message is made: each start runs alone.
+//
+// Screening (search/screening.h): a screen's outcome never moves the incumbent. Once none of
+// a scene's screens is open, the coordinator chooses its refines (refine_choice over the
+// recorded screens) and queues them with their screened solution files. A rank that asks for
+// work while only refines still to come could give it some waits: rank 0's own worker in
+// await_work(), a worker rank by getting no reply until take_outbox() has a task (or kStop)
+// for it.
 #pragma once
 
+#include <condition_variable>
 #include <cstdint>
 #include <mutex>
+#include <set>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -47,10 +56,14 @@ class Coordinator {
   // `guess_class`: the hand-out order defers starts of classes already tried (TaskQueue).
   Coordinator(const SearchPlan& plan, const std::string& out_dir, std::uint64_t seed,
               double time_limit, bool resumed, bool share_incumbent,
-              const GuessClassFunction& guess_class = {});
+              const GuessClassFunction& guess_class = {}, const ScreenSettings& screen = {});
 
-  // The next task for `rank`, or none: all handed out, a time limit, or an interrupt.
+  // The next task for `rank`, or none: none now (see await_work), all handed out, a time
+  // limit, or an interrupt.
   std::optional<Task> next(int rank);
+  // After next() gave none: false when no task can come any more; else waits until an
+  // outcome is recorded (at most 0.2 s) and returns true (ask next() again).
+  bool await_work();
   // Records a start's outcome: its runs.jsonl line, the scene's best (and its solution
   // file, when `solution` is given and it is the best), best.json, the progress line.
   void record(StartOutcome o, const nlohmann::json* solution);
@@ -60,6 +73,7 @@ class Coordinator {
   struct Reply {
     MessageKind kind = MessageKind::kStop;
     std::string body;
+    bool none = false;  // no reply now: the rank waits for refines (take_outbox answers it)
   };
   Reply on_result(int rank, const std::string& body);
 
@@ -70,8 +84,9 @@ class Coordinator {
   void progress(int scene, double value);
   // A worker's kProgress message: {"scene": index, "start": k, "value": J}.
   void on_progress(const std::string& body);
-  // The kIncumbent messages to send now: {"scene": index, "value": J} to each worker rank
-  // running a start of a scene whose incumbent improved since the last call.
+  // The messages to send now: kIncumbent {"scene": index, "value": J} to each worker rank
+  // running a start of a scene whose incumbent improved since the last call; and to each
+  // waiting rank its task (kTask), or kStop once no task can come.
   struct Outgoing {
     int to = 0;
     MessageKind kind = MessageKind::kIncumbent;
@@ -100,6 +115,9 @@ class Coordinator {
 
   // Lowers scene s's incumbent to `value` if that is lower (and marks it for take_outbox()).
   void lower_incumbent(int s, double value);
+  // Queues the refines of every scene whose screens are all closed (screening only).
+  void advance_stages(double now);
+  std::optional<Task> next_locked(int rank);
 
   const SearchPlan& plan_;
   const bool share_;
@@ -109,6 +127,9 @@ class Coordinator {
   TaskQueue queue_;
   std::vector<double> incumbent_;  // per scene, J (+inf: none)
   std::vector<bool> improved_;     // per scene: incumbent lowered since take_outbox()
+  ScreenSettings screen_;
+  std::set<int> waiting_;          // worker ranks without a reply (waiting for refines)
+  std::condition_variable recorded_;  // notified at every record()
 };
 
 }  // namespace disco

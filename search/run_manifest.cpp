@@ -24,7 +24,8 @@ namespace fs = std::filesystem;
 
 constexpr const char* kFormat = "disco-search-manifest";
 // What disco itself writes into a search directory (--force removes these, and only these).
-const char* const kOwnEntries[] = {"manifest.json", "runs.jsonl", "best.json", "best", "report"};
+const char* const kOwnEntries[] = {"manifest.json", "runs.jsonl", "best.json", "best", "screened",
+                                   "report"};
 
 std::string short_hash(const json& h) {
   const std::string s = h.is_string() ? h.get<std::string>() : std::string("none");

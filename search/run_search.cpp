@@ -25,8 +25,10 @@
 #include "search/homotopy.h"
 #include "search/run_manifest.h"
 #include "search/run_start.h"
+#include "search/screening.h"
 #include "search/search_plan.h"
 #include "search/start.h"
+#include "search/trajectory.h"
 
 namespace disco {
 namespace {
@@ -43,6 +45,7 @@ struct Context {
   std::uint64_t seed = 1;
   int rank = 0;
   bool share = false;  // search.share_incumbent (false: --deterministic)
+  ScreenSettings screen;  // search.screen_fraction, ... (search/screening.h)
 };
 
 // How a start running on this rank meets the shared incumbent (search/coordinator.h):
@@ -54,11 +57,37 @@ struct IncumbentLink {
 };
 
 StartOutcome run_task(const Context& c, const Task& t, json* solution, const IncumbentLink& link) {
-  const Scene& scene = c.plan.scenes[t.scene].scene;
   const SceneJob& job = c.plan.scenes[t.scene];
+  // A screen runs on the scene at fewer steps (search/screening.h).
+  Scene screened_scene;
+  if (t.stage == Stage::kScreen) {
+    screened_scene = job.scene;
+    screened_scene.steps = screen_steps(job.scene, c.screen.fraction);
+  }
+  const Scene& scene = t.stage == Stage::kScreen ? screened_scene : job.scene;
   StartSpec spec = make_start(scene, c.seed, t.start, c.schedule, c.elastic);
   const bool guessed = t.start == 0 && !job.guess.empty();
-  if (guessed) spec = with_guess(spec, job.guess);
+  if (guessed) {
+    Trajectory guess = job.guess;
+    guess.paths = resample(guess.paths, scene.steps);
+    spec = with_guess(spec, guess);
+  }
+  if (t.stage == Stage::kRefine) {  // from its screened answer
+    try {
+      spec = with_guess(spec, trajectory_from_solution(t.guess, scene,
+                                                       fmt::format("screened start {}", t.start)));
+    } catch (const std::exception& e) {  // an error outcome, as run_start makes them
+      StartOutcome o;
+      o.scene = scene.name;
+      o.start = t.start;
+      o.seed = c.seed;
+      o.stage = t.stage;
+      o.status = StartStatus::kError;
+      o.detail = e.what();
+      o.rank = c.rank;
+      return o;
+    }
+  }
   // --verbose: every elastic-mode solve of every start, on the rank that runs it.
   const bool verbose = spdlog::should_log(spdlog::level::debug);
   SolveCallback on_solve;
@@ -76,6 +105,7 @@ StartOutcome run_task(const Context& c, const Task& t, json* solution, const Inc
          guessed ? job.guess.source : std::string()},
         c.settings);
   o.rank = c.rank;
+  o.stage = t.stage;
   spdlog::debug("  {} start {}: {}", scene.name, t.start, o.stopped);
   return o;
 }
@@ -103,7 +133,7 @@ void worker_loop(const Context& c, Transport& transport) {
     if (msg.kind == MessageKind::kStop) return;
     const Task task = Task::from_json(json::parse(msg.body));
     IncumbentLink link;
-    if (c.share) {
+    if (c.share && task.stage != Stage::kScreen) {  // a screen's T_f is a coarser model's
       incumbent[task.scene] = std::min(incumbent[task.scene], task.incumbent);
       link.incumbent = [&] {
         while (const auto m = transport.poll()) take(*m);
@@ -130,7 +160,10 @@ void serve_workers(Coordinator& coordinator, Transport& transport) {
     // Poll rather than block: a blocking probe spins a core in Open MPI,
     // and that core is rank 0's own worker's. Solves take seconds; 2 ms of
     // latency costs nothing.
-    for (const auto& m : coordinator.take_outbox()) transport.send(m.to, m.kind, m.body);
+    for (const auto& m : coordinator.take_outbox()) {  // also the waiting ranks' tasks or stops
+      transport.send(m.to, m.kind, m.body);
+      if (m.kind == MessageKind::kStop) --active;
+    }
     const auto msg = transport.poll();
     if (!msg) {
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
@@ -141,6 +174,7 @@ void serve_workers(Coordinator& coordinator, Transport& transport) {
       continue;
     }
     const Coordinator::Reply reply = coordinator.on_result(msg->source, msg->body);
+    if (reply.none) continue;  // it waits for refines: take_outbox() answers it
     transport.send(msg->source, reply.kind, reply.body);
     if (reply.kind == MessageKind::kStop) --active;
   }
@@ -157,6 +191,7 @@ int run_search(const SearchOptions& o, Transport& transport) {
   for (const auto& s : settings_sets) c.settings.apply_override(s);
   if (o.deterministic) c.settings.apply_override(std::string(kShareIncumbentKey) + "=false");
   c.share = share_incumbent(c.settings);
+  c.screen = screen_settings(c.settings);
   c.schedule = reduction_settings(c.settings);
   c.elastic = elastic_settings(c.settings);
   // Every time of the search (limits, budgets, the seconds recorded) is read on this clock.
@@ -194,7 +229,8 @@ int run_search(const SearchOptions& o, Transport& transport) {
       return h.decided() ? h.key(job.scene) : std::string();
     };
   }
-  Coordinator coordinator(c.plan, o.out, o.seed, o.time_limit, earlier > 0, c.share, guess_class);
+  Coordinator coordinator(c.plan, o.out, o.seed, o.time_limit, earlier > 0, c.share, guess_class,
+                          c.screen);
   std::thread answering;
   if (transport.size() > 1) answering = std::thread([&] { serve_workers(coordinator, transport); });
   // The live line: refreshed every second by a thread that only reads the
@@ -211,9 +247,14 @@ int run_search(const SearchOptions& o, Transport& transport) {
       o.on_status("");
     });
   }
-  while (const auto t = coordinator.next(0)) {  // rank 0 works too
+  while (true) {  // rank 0 works too
+    const auto t = coordinator.next(0);
+    if (!t) {
+      if (coordinator.await_work()) continue;  // refines may still come
+      break;
+    }
     IncumbentLink link;
-    if (c.share) {
+    if (c.share && t->stage != Stage::kScreen) {
       link.incumbent = [&] { return coordinator.incumbent(t->scene); };
       link.found = [&](double T_f) { coordinator.progress(t->scene, T_f); };
     }

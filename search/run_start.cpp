@@ -37,6 +37,9 @@ constexpr std::pair<BudgetSource, const char*> kSourceNames[] = {{BudgetSource::
                                                                  {BudgetSource::kScene, "scene"},
                                                                  {BudgetSource::kSearch, "search"}};
 
+constexpr std::pair<Stage, const char*> kStageNames[] = {
+    {Stage::kFull, "full"}, {Stage::kScreen, "screen"}, {Stage::kRefine, "refine"}};
+
 template <class E, std::size_t N>
 std::string name_of(const std::pair<E, const char*> (&names)[N], E value) {
   for (const auto& [v, name] : names)
@@ -67,6 +70,8 @@ StartStatus start_status_from_string(const std::string& text) {
   return value_of(kStatusNames, text, "start status");
 }
 std::string to_string(BudgetSource s) { return name_of(kSourceNames, s); }
+std::string to_string(Stage s) { return name_of(kStageNames, s); }
+Stage stage_from_string(const std::string& text) { return value_of(kStageNames, text, "stage"); }
 BudgetSource budget_source_from_string(const std::string& text) {
   return value_of(kSourceNames, text, "budget source");
 }
@@ -74,6 +79,7 @@ BudgetSource budget_source_from_string(const std::string& text) {
 json StartOutcome::to_json() const {
   return {{"scene", scene},
           {"start", start},
+          {"stage", to_string(stage)},
           {"seed", seed},
           {"status", to_string(status)},
           {"detail", detail},
@@ -105,6 +111,7 @@ StartOutcome StartOutcome::from_json(const json& j) {
   StartOutcome o;
   o.scene = j.at("scene").get<std::string>();
   o.start = j.at("start").get<int>();
+  o.stage = stage_from_string(j.value("stage", "full"));  // older files: no stages
   o.seed = j.at("seed").get<std::uint64_t>();
   o.status = start_status_from_string(j.at("status").get<std::string>());
   o.detail = j.value("detail", "");

@@ -49,9 +49,17 @@ enum class BudgetSource { kNone, kStart, kScene, kSearch };
 std::string to_string(BudgetSource s);
 BudgetSource budget_source_from_string(const std::string& text);
 
+// Which stage of a search a start ran (search/screening.h). In runs.jsonl: "full" (a search
+// without screening), "screen" (at fewer steps; never a scene's result), "refine" (at full N_t
+// from the start's screened answer).
+enum class Stage { kFull, kScreen, kRefine };
+std::string to_string(Stage s);
+Stage stage_from_string(const std::string& text);  // std::invalid_argument if unknown
+
 struct StartOutcome {
   std::string scene;
   int start = 0;
+  Stage stage = Stage::kFull;
   std::uint64_t seed = 0;
   StartStatus status = StartStatus::kError;
   std::string detail;  // error message; last feasibility status when not solved

@@ -33,7 +33,7 @@ SearchRecord::SearchRecord(const SearchPlan& plan, const std::string& out_dir, s
   std::filesystem::create_directories(out_dir + "/best/.final", ec);
   if (ec) throw InputError(out_dir + "/best/.final: cannot create the directory (" + ec.message() + ")");
   if (resumed) read_earlier(runs, seed);
-  finished_ = static_cast<int>(done_.size());
+  finished_ = static_cast<int>(done_.size() + screened_done_.size());
   runs_ = std::fopen(runs.c_str(), resumed ? "a" : "w");
   if (runs_ == nullptr) throw InputError(runs + ": cannot open for writing");
   for (const std::string& line : recovered_) append(line);
@@ -53,6 +53,32 @@ int SearchRecord::scene_index(const std::string& name) const {
 void SearchRecord::record(const StartOutcome& o, const json* solution, double now, double scene_started) {
   const json line = o.to_json();
   const int s = scene_index(o.scene);
+  if (o.stage == Stage::kScreen) {  // its file first, as for a best (see there)
+    if (solution != nullptr) {
+      json doc = *solution;
+      doc["provenance"]["run"] = line;
+      const std::string file = screened_file(o.scene, o.start);
+      std::error_code ec;
+      std::filesystem::create_directories(std::filesystem::path(file).parent_path(), ec);
+      if (ec) throw InputError(file + ": cannot create its directory (" + ec.message() + ")");
+      write_json_file(file, doc);
+    }
+    if (s >= 0) screens_[{s, o.start}] = o;
+  } else {
+    record_result(o, solution, line, s, now, scene_started);
+  }
+  append(line.dump());
+  if (s >= 0 && is_final(o, plan_.scenes[s])) {
+    ++finished_;
+  } else {
+    ++cut_short_;
+  }
+  if (o.status == StartStatus::kInterrupted) ++interrupted_;
+}
+
+// A full start's or a refine's outcome: the scene's standing and its files.
+void SearchRecord::record_result(const StartOutcome& o, const json* solution, const json& line,
+                                 int s, double now, double scene_started) {
   // The solution first, then the line: a kill between the two leaves a best/SCENE.json whose
   // provenance.run is missing from runs.jsonl, and --resume appends it (read_earlier). The
   // other order would leave a recorded best without its file.
@@ -74,16 +100,26 @@ void SearchRecord::record(const StartOutcome& o, const json* solution, double no
                    o.scene, o.start, final_file(o.scene), o.scene, o.start);
     }
   }
-  append(line.dump());
-  if (s >= 0 && is_final(o, plan_.scenes[s])) {
-    ++finished_;
-  } else {
-    ++cut_short_;
-  }
-  if (o.status == StartStatus::kInterrupted) ++interrupted_;
 }
 
 std::string SearchRecord::best_file(const std::string& scene) const { return out_ + "/best/" + scene + ".json"; }
+std::string SearchRecord::screened_file(const std::string& scene, int start) const {
+  return out_ + "/screened/" + scene + "/" + std::to_string(start) + ".json";
+}
+
+std::set<int> SearchRecord::ran(int s) const {
+  std::set<int> out;
+  for (auto it = outcomes_.lower_bound({s, 0}); it != outcomes_.end() && it->first.first == s; ++it)
+    out.insert(it->first.second);
+  return out;
+}
+
+std::map<int, StartOutcome> SearchRecord::screened(int s) const {
+  std::map<int, StartOutcome> out;
+  for (auto it = screens_.lower_bound({s, 0}); it != screens_.end() && it->first.first == s; ++it)
+    out.emplace(it->first.second, it->second);
+  return out;
+}
 std::string SearchRecord::final_file(const std::string& scene) const {
   return out_ + "/best/.final/" + scene + ".json";
 }
@@ -160,6 +196,10 @@ void SearchRecord::read_earlier(const std::string& path, std::uint64_t seed) {
       const StartOutcome o = StartOutcome::from_json(json::parse(line));
       const int s = scene_index(o.scene);
       if (s < 0 || o.start >= plan_.scenes[s].starts || o.seed != seed) continue;
+      if (o.stage == Stage::kScreen) {  // a later line replaces an earlier one here too
+        screens_[{s, o.start}] = o;
+        continue;
+      }
       update(s, o, 0.0, 0.0);
       lines.insert(o.to_json().dump());
     } catch (const std::exception&) {
@@ -175,10 +215,17 @@ void SearchRecord::read_earlier(const std::string& path, std::uint64_t seed) {
       ++again;
     }
   }
+  for (const auto& [key, o] : screens_) {
+    if (is_final(o, plan_.scenes[key.first])) {
+      screened_done_.insert(key);
+    } else {
+      ++again;
+    }
+  }
   // Times of an earlier run are not comparable with this one's clock.
   for (auto& b : best_) b.first_feasible_s = b.best_s = b.start >= 0 ? 0.0 : -1.0;
   if (bad > 0) spdlog::warn("{}: skipped {} unreadable line(s)", path, bad);
-  resumed_ = static_cast<int>(done_.size());
+  resumed_ = static_cast<int>(done_.size() + screened_done_.size());
   spdlog::info("resume: {} start(s) already in {}{}", resumed_, path,
                again > 0 ? fmt::format("; {} cut short there run again", again) : "");
 }
@@ -258,6 +305,7 @@ void SearchRecord::write_best(const TaskQueue& queue, double now, bool interrupt
               {"starts_run", b.run},
               {"starts_solved", b.solved},
               {"starts_cut_short", b.cut_short},
+              {"starts_screened", screened(static_cast<int>(s)).size()},
               {"time_to_first_feasible_s", b.first_feasible_s >= 0 ? json(b.first_feasible_s) : json(nullptr)},
               {"time_to_best_s", b.best_s >= 0 ? json(b.best_s) : json(nullptr)},
               {"started_s", started >= 0 ? json(started) : json(nullptr)},

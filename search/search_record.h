@@ -19,6 +19,11 @@
 //                   can lie below where the same start ends when --resume runs it again; the
 //                   best then falls back to a final start, whose file is copied from here.
 //
+// Screening (search/screening.h): a screen's line (stage "screen") is kept apart from the
+// starts' outcomes: it is never a scene's best nor counted in best.json's starts_run. Its
+// solution file goes to DIR/screened/SCENE/K.json before its line, and the refine of start K
+// starts from it (also after --resume, which reads the screens back from runs.jsonl).
+//
 // The best of a scene is the smallest certified T_f, ties to the lower start index, so the
 // outcome does not depend on which rank ran what. A start's later line replaces its
 // earlier one (a start cut short and run again by --resume).
@@ -65,6 +70,14 @@ class SearchRecord {
 
   // The (scene, start) pairs with a final outcome in the earlier run (empty unless resumed).
   const std::set<std::pair<int, int>>& done() const { return done_; }
+  // The same for screens (stage "screen").
+  const std::set<std::pair<int, int>>& screened_done() const { return screened_done_; }
+  // The starts of scene s with an outcome that is not a screen (this run's and the earlier's).
+  std::set<int> ran(int s) const;
+  // Scene s's screen outcomes so far (this run's and the earlier run's), by start.
+  std::map<int, StartOutcome> screened(int s) const;
+  // DIR/screened/SCENE/K.json: the solution file of start K's screen.
+  std::string screened_file(const std::string& scene, int start) const;
 
   // Records `o`, finished at search time `now` (s); its scene's first start was handed out
   // at `scene_started`. Appends its line to runs.jsonl, recounts its scene and, when `o`
@@ -106,6 +119,8 @@ class SearchRecord {
   };
   int scene_index(const std::string& name) const;
   Standing update(int s, const StartOutcome& o, double now, double scene_started);
+  void record_result(const StartOutcome& o, const nlohmann::json* solution,
+                     const nlohmann::json& line, int s, double now, double scene_started);
   void read_earlier(const std::string& path, std::uint64_t seed);
   void recover_lines(const std::string& path, std::uint64_t seed, const std::set<std::string>& lines);
   std::string best_file(const std::string& scene) const;  // DIR/best/SCENE.json
@@ -119,7 +134,8 @@ class SearchRecord {
   std::FILE* runs_ = nullptr;
   std::vector<Best> best_;
   std::map<std::pair<int, int>, StartOutcome> outcomes_;  // (scene, start): its latest outcome
-  std::set<std::pair<int, int>> done_;
+  std::map<std::pair<int, int>, StartOutcome> screens_;   // the same for screens
+  std::set<std::pair<int, int>> done_, screened_done_;
   std::vector<std::string> recovered_;  // lines read_earlier took from best/SCENE.json
   int finished_ = 0, resumed_ = 0, cut_short_ = 0, interrupted_ = 0;
 };

@@ -19,22 +19,33 @@ double cost(const Scene& s) {
 }  // namespace
 
 nlohmann::json Task::to_json() const {
-  nlohmann::json j = {
-      {"scene", scene}, {"start", start}, {"budget", budget}, {"source", disco::to_string(source)}};
+  nlohmann::json j = {{"scene", scene},
+                      {"start", start},
+                      {"stage", disco::to_string(stage)},
+                      {"budget", budget},
+                      {"source", disco::to_string(source)}};
   if (std::isfinite(incumbent)) j["incumbent"] = incumbent;  // JSON has no infinity
+  if (!guess.is_null()) j["guess"] = guess;
   return j;
 }
 
 Task Task::from_json(const nlohmann::json& j) {
-  return {j.at("scene").get<int>(), j.at("start").get<int>(), j.at("budget").get<double>(),
-          budget_source_from_string(j.at("source").get<std::string>()),
-          j.value("incumbent", kInf)};
+  Task t;
+  t.scene = j.at("scene").get<int>();
+  t.start = j.at("start").get<int>();
+  t.stage = stage_from_string(j.at("stage").get<std::string>());
+  t.budget = j.at("budget").get<double>();
+  t.source = budget_source_from_string(j.at("source").get<std::string>());
+  t.incumbent = j.value("incumbent", kInf);
+  if (j.contains("guess")) t.guess = j["guess"];
+  return t;
 }
 
 TaskQueue::TaskQueue(const SearchPlan& plan, double time_limit,
                      const std::set<std::pair<int, int>>& done,
-                     const GuessClassFunction& guess_class)
-    : plan_(plan), time_limit_(time_limit), scenes_(plan.scenes.size()) {
+                     const GuessClassFunction& guess_class, const ScreenSettings& screen,
+                     const std::set<std::pair<int, int>>& screened)
+    : plan_(plan), time_limit_(time_limit), screen_(screen), scenes_(plan.scenes.size()) {
   std::vector<int> order(plan.scenes.size());
   for (std::size_t s = 0; s < order.size(); ++s) order[s] = static_cast<int>(s);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
@@ -48,10 +59,58 @@ TaskQueue::TaskQueue(const SearchPlan& plan, double time_limit,
       (c.empty() || classes.insert(c).second ? first : seen).push_back(k);
     }
     first.insert(first.end(), seen.begin(), seen.end());
-    for (int k : first)
-      if (!done.count({s, k})) pending_.push_back({s, k, 0.0});
+    for (int k : first) {
+      if (done.count({s, k}) || (screen_.on() && screened.count({s, k}))) continue;
+      Task t;
+      t.scene = s;
+      t.start = k;
+      t.stage = screen_.on() ? Stage::kScreen : Stage::kFull;
+      pending_.push_back(t);
+    }
   }
   total_ = plan.total_starts();
+  if (screen_.on())  // every screen, and at most refine_count refines per scene
+    for (const SceneJob& job : plan.scenes) total_ += std::min(screen_.refine_count, job.starts);
+}
+
+double TaskQueue::screen_end(int s) const {
+  if (!screen_.on()) return kInf;
+  double end = kInf;
+  if (time_limit_ > 0) end = screen_.share * time_limit_;
+  const SceneJob& job = plan_.scenes[s];
+  if (job.time_limit > 0 && scenes_[s].started_s >= 0)
+    end = std::min(end, scenes_[s].started_s + screen_.share * job.time_limit);
+  return end;
+}
+
+bool TaskQueue::screens_open(int s, double now) const {
+  if (!screen_.on()) return false;
+  for (const auto& [task, r] : running_)
+    if (task.first == s && r.stage == Stage::kScreen) return true;
+  if (now >= screen_end(s)) return false;  // the pending ones will not be handed out
+  for (std::size_t i = next_; i < pending_.size(); ++i)
+    if (pending_[i].scene == s && pending_[i].stage == Stage::kScreen) return true;
+  return false;
+}
+
+void TaskQueue::add_refines(int s, int chosen, const std::vector<Task>& tasks) {
+  SceneState& sc = scenes_[s];
+  if (sc.refined) return;
+  sc.refined = true;
+  total_ += chosen - std::min(screen_.refine_count, plan_.scenes[s].starts);
+  pending_.insert(pending_.begin() + static_cast<std::ptrdiff_t>(next_), tasks.begin(), tasks.end());
+}
+
+bool TaskQueue::refines_to_come(double now) const {
+  if (!screen_.on() || (time_limit_ > 0 && now >= time_limit_)) return false;
+  for (std::size_t s = 0; s < scenes_.size(); ++s) {
+    if (scenes_[s].refined) continue;
+    const SceneJob& job = plan_.scenes[s];
+    const bool scene_over = job.time_limit > 0 && scenes_[s].started_s >= 0 &&
+                            now - scenes_[s].started_s >= job.time_limit;
+    if (!scene_over) return true;
+  }
+  return false;
 }
 
 std::optional<Task> TaskQueue::next(int rank, double now) {
@@ -69,6 +128,7 @@ std::optional<Task> TaskQueue::next(int rank, double now) {
       sc.time_limited = true;
       continue;
     }
+    if (t.stage == Stage::kScreen && now >= screen_end(t.scene)) continue;  // screening is over
     t.budget = job.start_time_limit;
     t.source = job.start_time_limit > 0 ? BudgetSource::kStart : BudgetSource::kNone;
     auto cap = [&](double left, BudgetSource source) {
@@ -78,7 +138,12 @@ std::optional<Task> TaskQueue::next(int rank, double now) {
     };
     if (job.time_limit > 0) cap(scene_left, BudgetSource::kScene);
     if (time_limit_ > 0) cap(time_limit_ - now, BudgetSource::kSearch);
-    running_[{t.scene, t.start}] = {rank, now};
+    if (t.stage == Stage::kScreen) {  // a screen ends with the screening share
+      const double end = screen_end(t.scene);
+      const bool by_search = time_limit_ > 0 && end == screen_.share * time_limit_;
+      if (std::isfinite(end)) cap(end - now, by_search ? BudgetSource::kSearch : BudgetSource::kScene);
+    }
+    running_[{t.scene, t.start}] = {rank, now, t.stage};
     return t;
   }
   return std::nullopt;

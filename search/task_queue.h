@@ -11,6 +11,11 @@
 // the start's own limit and what is left of its scene's and of the search's; its
 // BudgetSource says which limit set it (search/run_start.h).
 //
+// Screening (search/screening.h): the queue first holds every start's screen; a scene's
+// refines are added by the coordinator (add_refines) once none of its screens is open, and run
+// before the screens still pending. Under a time limit, screens are handed out only until
+// the screening share of it (search.screen_share) is used, and their budgets end there.
+//
 // Not thread-safe: search/coordinator.h guards it.
 #pragma once
 
@@ -25,15 +30,18 @@
 
 #include "core/util/numbers.h"
 #include "search/run_start.h"
+#include "search/screening.h"
 #include "search/search_plan.h"
 
 namespace disco {
 
 struct Task {
   int scene = 0, start = 0;  // indices into the plan's scenes, and the start index
+  Stage stage = Stage::kFull;
   double budget = 0.0;       // s; 0 = none
   BudgetSource source = BudgetSource::kNone;  // the limit that set the budget
   double incumbent = kInf;  // s: its scene's shared incumbent when handed out (+inf: none)
+  nlohmann::json guess;     // kRefine: the start's screened solution document (else null)
   nlohmann::json to_json() const;             // the message that hands it to a worker
   static Task from_json(const nlohmann::json& j);
 };
@@ -49,8 +57,11 @@ class TaskQueue {
   // (search.defer_seen_classes), each scene's starts whose guess has a class ("" never
   // counts) that a lower start of the scene's guess already has are deferred after the
   // scene's other starts, index order kept within both groups: untried classes run first.
+  // With `screen` on, the tasks are the screens of every start not in `screened` (final
+  // screens of an earlier run) nor in `done` (its refine ended there).
   TaskQueue(const SearchPlan& plan, double time_limit, const std::set<std::pair<int, int>>& done,
-            const GuessClassFunction& guess_class = {});
+            const GuessClassFunction& guess_class = {}, const ScreenSettings& screen = {},
+            const std::set<std::pair<int, int>>& screened = {});
 
   // The next task for `rank` at search time `now` (s), or none: every task handed out,
   // or the search's time limit passed. Scenes whose own limit has passed are skipped.
@@ -58,6 +69,19 @@ class TaskQueue {
   // Task (scene, start) has an outcome: it no longer runs. `cut`: the limit that cut it short,
   // if one did (kSearch: the search's time limit was reached; kScene: the scene's).
   void finished(int scene, int start, BudgetSource cut = BudgetSource::kNone);
+
+  // Screening. Whether scene s still has screens that may run or are running at `now`
+  // (pending ones count until the screening share of a time limit is used).
+  bool screens_open(int s, double now) const;
+  // Whether scene s's refines have been added (always false without screening).
+  bool refined(int s) const { return scenes_[s].refined; }
+  // Scene s's refines, to run next, in this order; `chosen` counts the refines of the choice
+  // (those `tasks` leaves out ended in an earlier run). Fixes the scene's count in total().
+  void add_refines(int s, int chosen, const std::vector<Task>& tasks);
+  // Whether refines may still be added: a scene with screening whose refines are not, and
+  // whose time limit (and the search's) has not passed. A rank then waits for work.
+  bool refines_to_come(double now) const;
+  bool screening() const { return screen_.on(); }
   // At the end: tasks left undone mean a time limit stopped the search (as a start it cut does).
   void finish();
 
@@ -74,6 +98,7 @@ class TaskQueue {
   struct Running {
     int rank = 0;
     double handed_s = 0.0;
+    Stage stage = Stage::kFull;
   };
   const std::map<std::pair<int, int>, Running>& running() const { return running_; }
 
@@ -86,9 +111,13 @@ class TaskQueue {
   struct SceneState {
     double started_s = -1.0;
     bool time_limited = false;
+    bool refined = false;  // screening: its refines were added
   };
+  // Screening: the search time at which screens of scene s stop being handed out (+inf: never).
+  double screen_end(int s) const;
   const SearchPlan& plan_;
   double time_limit_ = 0.0;
+  ScreenSettings screen_;
   std::vector<Task> pending_;
   std::size_t next_ = 0;
   int total_ = 0;

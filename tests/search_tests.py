@@ -38,6 +38,11 @@ killrandom) runs --deterministic.
                SIGKILL to everything) at a random moment, then resumed without the limit
                (once more if the kill left nothing): each ends with exactly the runs and
                best of a clean run.
+  MODE_screened  (determinism, resume, timelimit, killrandom): the same, as a screened search
+               (search.screen_fraction 0.5, search.refine_count 2; search/README.md,
+               "Screening"), every start's screen and refine compared; timelimit_screened: on
+               the simulated clock, a limit cuts the same runs twice, and --resume without it
+               ends with the runs and best of a clean screened run.
   logging      logs go to stderr and results to files (stdout stays empty): the progress
                line by default, a live status line on a terminal only, nothing with --quiet, every start's solve log and every
                Ipopt solve with --verbose (each line naming its rank); the same for
@@ -56,6 +61,8 @@ import time
 from script_checks import check, failures, finish
 
 DISCO, MPIEXEC, BENCH, WORK, MODE = sys.argv[1:6]
+SCREENED = MODE.endswith("_screened")
+MODE = MODE.removesuffix("_screened")
 MPI = [MPIEXEC, "-np", "2", "--allow-run-as-root", "--oversubscribe"]
 ENV = dict(os.environ, OMP_NUM_THREADS="1")
 
@@ -63,7 +70,8 @@ ENV = dict(os.environ, OMP_NUM_THREADS="1")
 # Runs compared bit for bit (across ranks, with a clean run after a resume) are deterministic:
 # each start alone (the default of configs/disco.yaml, forced here). mpi2 and mpi8 share the
 # incumbent.
-DET = ["--deterministic"]
+DET = ["--deterministic"] + (["--set", "search.screen_fraction=0.5", "--set", "search.refine_count=2"]
+                             if SCREENED else [])
 SHARED = ["--set", "search.share_incumbent=true"]
 
 
@@ -79,7 +87,8 @@ def runs(out):
 
 
 def key_set(rs):
-    return sorted((r["scene"], r["start"], r["status"], repr(r["T_f"])) for r in rs)
+    return sorted((r["scene"], r["start"], r.get("stage", "full"), r["status"], repr(r["T_f"]))
+                  for r in rs)
 
 
 def best(out):
@@ -98,6 +107,10 @@ def kill_all(proc, out):
         time.sleep(0.05)
 
 
+# The simulated clock (configs/disco.yaml `clock:`, core/util/clock.h): time is Ipopt iterations.
+TICK = 0.01
+SIM = ["--set", "clock.kind=iterations", "--set", f"clock.seconds_per_iteration={TICK}"]
+
 CUT = ("time_limit", "interrupted")  # a start cut short: --resume runs it again
 
 
@@ -105,19 +118,47 @@ def latest(rs):
     """Each start's last line (a start cut short and run again has two)."""
     last = {}
     for r in rs:
-        last[(r["scene"], r["start"])] = r
+        last[(r["scene"], r["start"], r.get("stage", "full"))] = r
     return list(last.values())
 
 
-def check_consistent(out, label, timing=False):
+def refine_choice(screens, count):
+    """search/screening.h's refine_choice: the certified screens ranked by (T_f, start), the best
+    of each homotopy class first, then the next best."""
+    ranked = sorted((r for r in screens if r["T_f"] is not None), key=lambda r: (r["T_f"], r["start"]))
+    out, classes = [], set()
+    for r in ranked:
+        key = (r.get("class") or {}).get("key", "")
+        if len(out) < count and (key == "" or key not in classes):
+            classes.add(key)
+            out.append(r["start"])
+    out += [r["start"] for r in ranked if r["start"] not in out][:max(0, count - len(out))]
+    return out
+
+
+def check_consistent(out, label, timing=False, limited=False):
     rs, b = runs(out), best(out)
-    final = [(r["scene"], r["start"]) for r in rs if r["status"] not in CUT]
+    final = [(r["scene"], r["start"], r.get("stage", "full")) for r in rs if r["status"] not in CUT]
     check(len(final) == len(set(final)), f"{label}: every start ended once ({len(final)} final lines)")
     rs = latest(rs)
     check(all(r["status"] not in CUT for r in rs), f"{label}: no start left cut short")
     check(b["starts_finished"] == b["starts_total"] == len(rs), f"{label}: best.json counts all starts")
+    stages = {r.get("stage", "full") for r in rs}
+    check(stages == ({"screen", "refine"} if SCREENED else {"full"}), f"{label}: stages {sorted(stages)}")
     for scene, s in b["scenes"].items():
-        solved = [r for r in rs if r["scene"] == scene and r["T_f"] is not None]
+        if SCREENED:
+            screens = [r for r in rs if r["scene"] == scene and r["stage"] == "screen"]
+            check(all(os.path.exists(os.path.join(out, "screened", scene, f"{r['start']}.json"))
+                      for r in screens if r["T_f"] is not None),
+                  f"{label}: {scene}: every certified screen's answer is in screened/")
+            refined = {r["start"] for r in rs if r["scene"] == scene and r["stage"] == "refine"}
+            chosen = refine_choice(screens, 2)
+            # A time limit may have made an earlier run refine others too (from fewer screens).
+            check(set(chosen) <= refined and (limited or refined == set(chosen)),
+                  f"{label}: {scene}: refined {sorted(refined)}, the choice {chosen}")
+        # The best: of full starts and refines only (a screen's T_f is a coarser model's).
+        solved = [r for r in rs if r["scene"] == scene and r["T_f"] is not None
+                  and r.get("stage", "full") != "screen"]
         if not solved:
             check(s["T_f"] is None, f"{label}: {scene} has no best")
             continue
@@ -218,14 +259,54 @@ elif MODE == "resume":
     check_consistent(out, "resumed")
     check({k: v["T_f"] for k, v in best(out)["scenes"].items()} ==
           {k: v["T_f"] for k, v in best(clean)["scenes"].items()}, "resumed best equals the clean run's")
+elif MODE == "timelimit" and SCREENED:
+    # On the simulated clock, one rank (as below): a limit inside the refines. Screens are
+    # handed out, and end, by half of it (search.screen_share 0.5); the same limit twice gives
+    # the same runs; --resume without it runs what is left and keeps every line of a clean run.
+    clean, out = os.path.join(WORK, "clean"), os.path.join(WORK, "timelimit")
+    RUN = ["--starts", "3", *DET, *SIM]
+    check(search(clean, 1, *RUN) == 0, "clean 1-rank screened search exits 0")
+    order = runs(clean)
+    end = max(x["finished_s"] for x in order)
+    limit = (int(0.8 * end / TICK) + 0.5) * TICK
+    share_end = 0.5 * limit
+
+    def limited(path):
+        shutil.rmtree(path, ignore_errors=True)
+        return subprocess.run([DISCO, "search", BENCH, "--seed", "7", "--out", path, "--time-limit",
+                               repr(limit), *RUN], env=ENV, capture_output=True, text=True)
+    r = limited(out)
+    rs, b = runs(out), best(out)
+    check(r.returncode in (0, 3), f"time-limited screened search exits 0 or 3 (got {r.returncode})")
+    for x in rs:
+        if x["stage"] == "screen":
+            check(x["finished_s"] - x["seconds"] < share_end and x["finished_s"] <= share_end + TICK + 1e-9,
+                  f"{x['scene']} screen {x['start']}: handed out before and ended by the screening "
+                  f"share's end ({x['finished_s']:.2f} s, {share_end:.3f})")
+    check(any(x["stage"] == "refine" for x in rs), "refines ran after the screens")
+    for scene, sb in b["scenes"].items():
+        points = [x["T_f"] for x in rs if x["scene"] == scene and x["T_f"] is not None and x["stage"] == "refine"]
+        check(sb["T_f"] == (min(points) if points else None), f"{scene}: the best refine is the best")
+    again = limited(out + "_again")
+    check([(x["scene"], x["start"], x["stage"], x["status"], repr(x["T_f"]), x["seconds"]) for x in runs(out + "_again")] ==
+          [(x["scene"], x["start"], x["stage"], x["status"], repr(x["T_f"]), x["seconds"]) for x in rs],
+          "the same limit again: the same runs")
+    code = subprocess.run([DISCO, "search", BENCH, "--seed", "7", "--out", out, "--resume", *RUN],
+                          env=ENV).returncode
+    check(code == 0, "--resume without the limit exits 0")
+    check_consistent(out, "resumed", limited=True)
+    resumed = latest(runs(out))
+    check(set(key_set(runs(clean))) <= set(key_set(resumed)),
+          "resumed: every run of the clean run, bit for bit (and the refines the limit chose)")
+    for scene, v in best(out)["scenes"].items():
+        c = best(clean)["scenes"][scene]["T_f"]
+        check(v["T_f"] is not None and (c is None or v["T_f"] <= c), f"resumed: {scene}'s best at most the clean run's")
 elif MODE == "timelimit":
     # On the simulated clock (configs/disco.yaml `clock:`, core/util/clock.h), one rank: the
     # search's time is its Ipopt iterations, so where a limit falls is a fact of the runs, the
     # same on any machine at any load. A clean run gives each start's span on that clock (on
     # one rank, starts run one after another in hand-out order, the order of runs.jsonl); the
     # limit is put halfway through start K (the second), between two iteration reports.
-    TICK = 0.01
-    SIM = ["--set", "clock.kind=iterations", "--set", f"clock.seconds_per_iteration={TICK}"]
     clean, out = os.path.join(WORK, "clean"), os.path.join(WORK, "timelimit")
     # Two starts per scene: enough to cut one in flight with one before it and others after it.
     RUN = ["--starts", "2", *DET, *SIM]
@@ -457,8 +538,14 @@ elif MODE in ("interrupt", "killrandom"):
     def command(out, *extra):
         return [DISCO, "search", *config, "--seed", "7", "--out", out, *DET, *extra]
 
-    def same_as_clean(out, clean, label):
-        check_consistent(out, label)
+    def same_as_clean(out, clean, label, limited=False):
+        check_consistent(out, label, limited=limited)
+        if SCREENED and limited:  # refines chosen from the screens the limit let run stay too
+            check(set(key_set(runs(clean))) <= set(key_set(latest(runs(out)))),
+                  f"{label}: every run of the clean run, bit for bit")
+            check(all(v["T_f"] <= best(clean)["scenes"][k]["T_f"] for k, v in best(out)["scenes"].items()),
+                  f"{label}: a best at most the clean run's")
+            return
         check(key_set(latest(runs(out))) == key_set(runs(clean)),
               f"{label}: the runs of the clean run, bit for bit")
         check({k: (v["T_f"], v.get("start")) for k, v in best(out)["scenes"].items()} ==
@@ -515,7 +602,7 @@ elif MODE in ("interrupt", "killrandom"):
             label = f"run {k} ({how} at {at:.1f} s{', ' + ' '.join(limit) if limit else ''})"
             r = subprocess.run(MPI + command(out, "--resume"), env=ENV, capture_output=True, text=True)
             check(r.returncode == 0, f"{label}: --resume exits 0 ({r.stderr[-200:]!r})")
-            same_as_clean(out, clean, label)
+            same_as_clean(out, clean, label, limited=bool(limit))
 else:
     sys.exit(f"unknown mode {MODE}")
 

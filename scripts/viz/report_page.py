@@ -208,14 +208,16 @@ def start_table(s):
     rows = []
     for r in ordered:
         solved = has_final_point(r)
-        best = r["start"] == s["best"].get("start")
+        stage = r.get("stage", "full")  # a screen's value is a coarser model's: no "vs best"
+        best = r["start"] == s["best"].get("start") and stage != "screen"
         vs = ("best" if best else f"{100.0 * (value_of(r) - best_T) / best_T:+.2f} %"
-              if solved and best_T else "–")
+              if solved and best_T and stage != "screen" else "–")
         sched_text = schedule_text(r)
         detail = f"<br><span class=muted>{esc(r['detail'])}</span>" if r.get("detail") else ""
         guess_text = guess_of(r.get("description", ""))
         rows.append(
-            f'<tr{" class=best" if best else ""}><td class=num>{r["start"]}</td>'
+            f'<tr{" class=best" if best else ""}><td class=num>{r["start"]}'
+            f'{"" if stage == "full" else " <span class=muted>" + esc(stage) + "</span>"}</td>'
             f"<td>{esc(guess_text or r.get('guess', ''))}</td><td>{sched_text}</td>"
             f"<td>{status_cell(r['status'])}{detail}</td>"
             f"<td class=num>{fmt(value_of(r), '.6f')}</td><td class=num>{vs}</td>"
@@ -231,8 +233,9 @@ def start_table(s):
 def class_table(s):
     """The homotopy classes the scene's starts ended in (runs.jsonl "class", search/homotopy.h):
     per class, its best T_f, how many starts ended in it and how many guesses were of it;
-    best class first. "" when no line has a class (runs of an older disco)."""
-    runs = s["runs"]
+    best class first. "" when no line has a class (runs of an older disco). Screens (their
+    values a coarser model's) are left out."""
+    runs = [r for r in s["runs"] if r.get("stage") != "screen"]
     ended, guessed = {}, {}
     for r in runs:
         g = r.get("guess_class")

@@ -182,3 +182,51 @@ def plot_spread(runs, scene, out):
     ax.grid(True, axis="y", lw=0.4, color="0.88")
     ax.tick_params(labelsize=8)
     return save_figure(fig, out)
+
+
+def screen_runs(runs):
+    """(screens, the rest): a screened search's screen lines (stage "screen", search/README.md,
+    "Screening") and its full starts and refines, the only ones with a scene's result."""
+    screens = [r for r in runs if r.get("stage") == "screen"]
+    return screens, [r for r in runs if r.get("stage") != "screen"]
+
+
+def plot_screening(runs, scene, out):
+    """Screened against refined: every screened start, ranked by its screened J (hollow: at
+    the screen's steps), and for the refined ones the J they reached at full N_t (filled,
+    joined to their screen); the best start is a star."""
+    fig, ax = plt.subplots(figsize=(SIZE[0] / DPI, SIZE[1] / DPI), dpi=DPI, layout="constrained")
+    screens, rest = screen_runs(runs)
+    refined = {r["start"]: r for r in rest if r.get("stage") == "refine"}
+    order = sorted((r for r in screens if has_final_point(r) or r["status"] == "time_limit"
+                    and value_of(r) is not None), key=lambda r: (value_of(r), r["start"]))
+    kinds = guess_kinds(screens)
+    colors = guess_colors(kinds)
+    for x, r in enumerate(order):
+        c = colors[r.get("guess") or "unknown"]
+        ax.plot([x], [value_of(r)], ls="none", marker="o", ms=7, mfc="none", mec=c, zorder=3)
+        f = refined.get(r["start"])
+        if f is not None and value_of(f) is not None:
+            best = r["start"] == scene.get("start")
+            ax.plot([x, x], [value_of(r), value_of(f)], color=c, lw=1.0, zorder=2)
+            ax.plot([x], [value_of(f)], ls="none", marker="*" if best else "o",
+                    ms=14 if best else 7, mfc="gold" if best else c, mec="black" if best else c,
+                    zorder=4)
+    ax.set_xticks(range(len(order)), [str(r["start"]) for r in order], fontsize=8)
+    _reference_line(ax, scene)
+    handles = [Line2D([], [], ls="none", marker="o", mfc="none", mec="0.3", label="screened"),
+               Line2D([], [], ls="none", marker="o", color="0.3", label="refined (full N_t)"),
+               Line2D([], [], ls="none", marker="*", ms=12, mfc="gold", mec="black", label="best start")]
+    handles += [Line2D([], [], color=colors[k], lw=1.5, label=k) for k in kinds]
+    handles += [h for h in ax.get_legend_handles_labels()[0] if h.get_label().startswith(
+        ("lower", "reference"))]
+    ax.legend(handles=handles, fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0),
+              frameon=False, borderaxespad=0.0)
+    unsolved = len(screens) - len(order)
+    ax.set_xlabel("start, by screened " + objective_label(scene).split(" [")[0]
+                  + (f" ({unsolved} screen(s) without a point left out)" if unsolved else ""))
+    ax.set_ylabel(objective_label(scene))
+    ax.set_title(f"{scene['name']}: screened against refined", fontsize=11)
+    ax.grid(True, axis="y", lw=0.4, color="0.88")
+    ax.tick_params(labelsize=8)
+    return save_figure(fig, out)

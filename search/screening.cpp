@@ -1,0 +1,53 @@
+// disco — a screened search (search/screening.h says what and why).
+#include "search/screening.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "core/util/errors.h"
+
+namespace disco {
+
+ScreenSettings screen_settings(const Settings& s) {
+  auto refuse = [&](const std::string& key, const std::string& what) {
+    throw InputError(s.where(key) + ": key '" + key + "': " + what);
+  };
+  ScreenSettings out;
+  out.fraction = s.number("search.screen_fraction");
+  if (!(out.fraction >= 0 && out.fraction < 1))
+    refuse("search.screen_fraction", "must be >= 0 and below 1 (0: no screening)");
+  out.refine_count = s.integer("search.refine_count");
+  if (out.refine_count < 1) refuse("search.refine_count", "must be >= 1");
+  out.share = s.number("search.screen_share");
+  if (!(out.share > 0 && out.share < 1)) refuse("search.screen_share", "must be above 0 and below 1");
+  return out;
+}
+
+int screen_steps(const Scene& scene, double fraction) {
+  const int n = std::max(2, static_cast<int>(std::lround(fraction * scene.steps)));
+  return std::min(n, scene.steps);
+}
+
+std::vector<int> refine_choice(std::vector<Screened> screened, int count) {
+  screened.erase(std::remove_if(screened.begin(), screened.end(),
+                                [](const Screened& x) { return !std::isfinite(x.value); }),
+                 screened.end());
+  std::sort(screened.begin(), screened.end(), [](const Screened& a, const Screened& b) {
+    return a.value != b.value ? a.value < b.value : a.start < b.start;
+  });
+  std::vector<int> out;
+  std::vector<char> taken(screened.size(), 0);
+  std::set<std::string> classes;
+  for (std::size_t i = 0; i < screened.size() && static_cast<int>(out.size()) < count; ++i) {
+    const std::string& c = screened[i].class_key;
+    if (!c.empty() && !classes.insert(c).second) continue;
+    out.push_back(screened[i].start);
+    taken[i] = 1;
+  }
+  for (std::size_t i = 0; i < screened.size() && static_cast<int>(out.size()) < count; ++i)
+    if (!taken[i]) out.push_back(screened[i].start);
+  return out;
+}
+
+}  // namespace disco

@@ -1,0 +1,55 @@
+// disco — a screened search (search.screen_fraction > 0; search/README.md, "Screening"):
+// every start first runs on its scene at fewer steps (the screen), and only the best screened
+// starts of each scene run at the scene's own N_t, from their screened answer (the refine).
+//
+//   screen   start k's objective reduction (its own guess and schedule) on the scene at
+//            screen_steps() steps. Its answer is recorded (runs.jsonl, stage "screen"; its
+//            solution file in DIR/screened/SCENE/K.json) and never counts as the scene's
+//            result: a screened T_f is that of a coarser model.
+//   refine   once every screen of a scene has an outcome (or, under a time limit, once the
+//            screening share of it is used), refine_choice() picks up to refine_count
+//            screened starts; each runs at full N_t from its screened answer resampled to N_t
+//            (a start of kind kGiven, as with --guess: search/trajectory.h), keeping the
+//            start's own schedule. Its outcome is the start's (stage "refine"): the scene's
+//            best is always a refined, full-N_t, certified answer.
+//
+// The choice depends only on the screens' outcomes, so a screened search keeps the
+// guarantees of the deterministic mode (the same runs and best on 1 or 2 ranks, and after
+// --resume).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/model/scene.h"
+#include "core/config/settings.h"
+
+namespace disco {
+
+// search.screen_fraction, search.refine_count, search.screen_share of the settings.
+struct ScreenSettings {
+  double fraction = 0.0;  // 0: no screening (every start at full N_t, as without stages)
+  int refine_count = 0;   // refines per scene, at most
+  double share = 0.0;     // under a time limit: the share of it screens may use
+  bool on() const { return fraction > 0.0; }
+};
+// InputError naming the key for a value out of its range.
+ScreenSettings screen_settings(const Settings& settings);
+
+// The steps a screen runs at: max(2, round(fraction · N_t)), at most N_t.
+int screen_steps(const Scene& scene, double fraction);
+
+// One screened start as the choice sees it.
+struct Screened {
+  int start = 0;
+  double value = 0.0;     // its certified J (T_f for objective time); NaN: none
+  std::string class_key;  // the homotopy class of its answer (search/homotopy.h), "" if none
+};
+
+// The starts to refine, in the order they should run: the certified screened starts ranked by
+// (value, start); first the best of each homotopy class in that order (a class "" counts as
+// its own each time), then the next best not yet chosen, until `count` are chosen or none is
+// left.
+std::vector<int> refine_choice(std::vector<Screened> screened, int count);
+
+}  // namespace disco

@@ -1,0 +1,246 @@
+// A screened search's bookkeeping without solves (search/screening.h, search/task_queue.h,
+// search/coordinator.h): the screen's steps, the choice of refines, the settings' ranges, and
+// a search driven through the coordinator's message protocol with made-up outcomes: screens
+// first, refines once every screen has ended (a rank asking in between waits), the best only
+// from refines, and --resume across the two stages.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "core/config/settings.h"
+#include "core/model/scene_yaml.h"
+#include "core/util/errors.h"
+#include "search/coordinator.h"
+#include "search/screening.h"
+#include "search/search_plan.h"
+#include "search/task_queue.h"
+
+namespace disco {
+namespace {
+
+using json = nlohmann::json;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string config(const std::string& path) { return std::string(DISCO_SOURCE_DIR) + "/configs/" + path; }
+
+std::string fresh_dir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("disco_screening_" + name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir.string();
+}
+
+TEST(Screening, TheScreenRunsAtTheFractionOfTheStepsAtLeastTwo) {
+  Scene scene = load_scene(config("scenarios/paper/A3.yaml"));
+  ASSERT_EQ(scene.steps, 50);
+  EXPECT_EQ(screen_steps(scene, 0.5), 25);
+  EXPECT_EQ(screen_steps(scene, 0.25), 13);  // round(12.5), away from zero
+  EXPECT_EQ(screen_steps(scene, 0.01), 2);
+  scene.steps = 3;
+  EXPECT_EQ(screen_steps(scene, 0.9), 3);
+}
+
+TEST(Screening, RefinesAreTheBestOfEachClassFirstThenTheNextBest) {
+  const std::vector<Screened> screened = {
+      {0, 10.0, "a"}, {1, 9.0, "a"}, {2, 9.5, "b"}, {3, kNaN, "c"}, {4, 9.0, "a"}, {5, 11.0, ""},
+      {6, 12.0, ""}};
+  // Ranked: 1 (9.0 a), 4 (9.0 a, a tie to the lower start), 2 (9.5 b), 0 (10 a), 5, 6; 3 has
+  // no certified point. Classes first: 1 (a), 2 (b), 5 and 6 (no class: each its own).
+  EXPECT_EQ(refine_choice(screened, 2), (std::vector<int>{1, 2}));
+  EXPECT_EQ(refine_choice(screened, 4), (std::vector<int>{1, 2, 5, 6}));
+  EXPECT_EQ(refine_choice(screened, 6), (std::vector<int>{1, 2, 5, 6, 4, 0}));
+  EXPECT_EQ(refine_choice(screened, 10).size(), 6u) << "never an uncertified screen";
+  EXPECT_TRUE(refine_choice({{0, kNaN, ""}}, 3).empty());
+}
+
+TEST(Screening, BadSettingsAreRefusedNamingTheKey) {
+  const auto message = [](const std::string& o) {
+    Settings s = Settings::load(default_settings_path());
+    s.apply_override(o);
+    try {
+      screen_settings(s);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(message("search.screen_fraction=1").find("search.screen_fraction"), std::string::npos);
+  EXPECT_NE(message("search.screen_fraction=-0.1").find("search.screen_fraction"), std::string::npos);
+  EXPECT_NE(message("search.refine_count=0").find("search.refine_count"), std::string::npos);
+  EXPECT_NE(message("search.screen_share=1").find("search.screen_share"), std::string::npos);
+  EXPECT_EQ(message("search.screen_fraction=0.5"), "");
+  Settings s = Settings::load(default_settings_path());
+  EXPECT_FALSE(screen_settings(s).on()) << "the default is today's search";
+}
+
+ScreenSettings screening(int refine_count) {
+  ScreenSettings s;
+  s.fraction = 0.5;
+  s.refine_count = refine_count;
+  s.share = 0.5;
+  return s;
+}
+
+// A made-up outcome of `task` (its stage kept) with T_f, in class `key`, and its solution.
+json outcome_message(const SearchPlan& plan, const Task& task, double T_f, const std::string& key) {
+  StartOutcome o;
+  o.scene = plan.scenes[task.scene].scene.name;
+  o.start = task.start;
+  o.stage = task.stage;
+  o.seed = 1;
+  o.rank = 1;
+  o.seconds = 0.01;
+  o.status = StartStatus::kSolved;
+  o.T_f = o.value = T_f;
+  o.max_violation = o.max_complementarity = 1e-9;
+  o.best_class = {{"key", key}, {"pairs", json::array()}};
+  return {{"outcome", o.to_json()},
+          {"solution", {{"T_f", T_f}, {"made_by", to_string(task.stage) + " " + std::to_string(task.start)}}}};
+}
+
+// Screened T_f per start (start 2 is the best screen, 0 and 3 share its class) and refined T_f.
+double screened_T_f(int k) { return std::vector<double>{3.0, 4.0, 2.0, 2.5}.at(k); }
+std::string class_of(int k) { return k == 1 ? "b" : "a"; }
+double refined_T_f(int k) { return 5.0 + k; }
+
+TEST(ScreenedSearch, ScreensFirstThenTheChosenRefinesAndTheBestOnlyFromARefine) {
+  const SearchPlan plan = load_search_plan({config("scenarios/one_robot_axis.yaml")}, 4, 1, {});
+  const std::string dir = fresh_dir("flow");
+  Coordinator c(plan, dir, 1, 0.0, false, false, {}, screening(2));
+  Coordinator::Reply reply = c.on_result(1, "{}");
+  std::vector<std::pair<std::string, int>> handed;
+  while (reply.kind == MessageKind::kTask) {
+    const Task t = Task::from_json(json::parse(reply.body));
+    handed.push_back({to_string(t.stage), t.start});
+    if (t.stage == Stage::kRefine) {
+      // The refine starts from its screen's solution file.
+      EXPECT_EQ(t.guess.at("made_by"), "screen " + std::to_string(t.start));
+      EXPECT_EQ(t.guess.at("provenance").at("run").at("stage"), "screen");
+    }
+    const double T_f = t.stage == Stage::kScreen ? screened_T_f(t.start) : refined_T_f(t.start);
+    reply = c.on_result(1, outcome_message(plan, t, T_f, class_of(t.start)).dump());
+  }
+  EXPECT_EQ(reply.kind, MessageKind::kStop);
+  EXPECT_FALSE(reply.none);
+  // Every screen, then the best of class a (start 2) and of class b (start 1).
+  const std::vector<std::pair<std::string, int>> expected = {
+      {"screen", 0}, {"screen", 1}, {"screen", 2}, {"screen", 3}, {"refine", 2}, {"refine", 1}};
+  EXPECT_EQ(handed, expected);
+  c.finish();
+  const json best = json::parse(std::ifstream(dir + "/best.json"));
+  const json& scene = best["scenes"]["one_robot_axis"];
+  EXPECT_EQ(scene["T_f"], refined_T_f(1)) << "the best refine, not the lower screened T_f";
+  EXPECT_EQ(scene["start"], 1);
+  EXPECT_EQ(scene["starts_run"], 2);
+  EXPECT_EQ(scene["starts_screened"], 4);
+  EXPECT_EQ(best["starts_total"], 6);
+  EXPECT_EQ(best["starts_finished"], 6);
+  const json file = json::parse(std::ifstream(dir + "/best/one_robot_axis.json"));
+  EXPECT_EQ(file["made_by"], "refine 1");
+  std::ifstream runs(dir + "/runs.jsonl");
+  std::map<std::string, int> stages;
+  for (std::string line; std::getline(runs, line);) ++stages[json::parse(line)["stage"]];
+  EXPECT_EQ(stages, (std::map<std::string, int>{{"screen", 4}, {"refine", 2}}));
+  for (int k = 0; k < 4; ++k)
+    EXPECT_TRUE(std::filesystem::exists(dir + "/screened/one_robot_axis/" + std::to_string(k) + ".json"));
+}
+
+TEST(ScreenedSearch, ARankAskingWhileScreensStillRunWaitsAndGetsItsRefineOrStopLater) {
+  const SearchPlan plan = load_search_plan({config("scenarios/one_robot_axis.yaml")}, 2, 1, {});
+  Coordinator c(plan, fresh_dir("wait"), 1, 0.0, false, false, {}, screening(2));
+  const Task a = Task::from_json(json::parse(c.on_result(1, "{}").body));
+  const Task b = Task::from_json(json::parse(c.on_result(2, "{}").body));
+  ASSERT_EQ(a.stage, Stage::kScreen);
+  ASSERT_EQ(b.stage, Stage::kScreen);
+  // Rank 1 ends its screen while rank 2's runs: nothing to hand out yet, and no stop.
+  Coordinator::Reply r1 = c.on_result(1, outcome_message(plan, a, 3.0, "a").dump());
+  EXPECT_TRUE(r1.none);
+  EXPECT_TRUE(c.take_outbox().empty());
+  // Rank 2's screen ends: both refines are chosen; rank 2 gets one at once, rank 1 the other.
+  Coordinator::Reply r2 = c.on_result(2, outcome_message(plan, b, 2.0, "b").dump());
+  ASSERT_EQ(r2.kind, MessageKind::kTask);
+  const Task t2 = Task::from_json(json::parse(r2.body));
+  EXPECT_EQ(t2.stage, Stage::kRefine);
+  EXPECT_EQ(t2.start, b.start) << "the better screen first";
+  const auto out = c.take_outbox();
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].to, 1);
+  ASSERT_EQ(out[0].kind, MessageKind::kTask);
+  const Task t1 = Task::from_json(json::parse(out[0].body));
+  EXPECT_EQ(t1.stage, Stage::kRefine);
+  EXPECT_EQ(t1.start, a.start);
+  // Both end: both are told to stop, with a reply (nothing is left to come).
+  EXPECT_EQ(c.on_result(1, outcome_message(plan, t1, 6.0, "a").dump()).kind, MessageKind::kStop);
+  const Coordinator::Reply last = c.on_result(2, outcome_message(plan, t2, 5.0, "b").dump());
+  EXPECT_EQ(last.kind, MessageKind::kStop);
+  EXPECT_FALSE(last.none);
+  EXPECT_FALSE(c.await_work());
+}
+
+TEST(ScreenedSearch, AResumeSkipsEndedScreensAndRefinesAndChoosesFromTheRecordedScreens) {
+  const SearchPlan plan = load_search_plan({config("scenarios/one_robot_axis.yaml")}, 4, 1, {});
+  const std::string dir = fresh_dir("resume");
+  {  // The first run ends every screen and one refine (start 2), then stops (a kill).
+    Coordinator c(plan, dir, 1, 0.0, false, false, {}, screening(2));
+    while (const auto t = c.next(0)) {
+      const double T_f = t->stage == Stage::kScreen ? screened_T_f(t->start) : refined_T_f(t->start);
+      const json m = outcome_message(plan, *t, T_f, class_of(t->start));
+      c.record(StartOutcome::from_json(m["outcome"]), &m["solution"]);
+      if (t->stage == Stage::kRefine) break;
+    }
+  }
+  Coordinator again(plan, dir, 1, 0.0, true, false, {}, screening(2));
+  std::vector<std::pair<Stage, int>> handed;
+  while (const auto t = again.next(0)) {
+    handed.push_back({t->stage, t->start});
+    EXPECT_EQ(t->guess.at("made_by"), "screen " + std::to_string(t->start));
+    const json m = outcome_message(plan, *t, refined_T_f(t->start), class_of(t->start));
+    again.record(StartOutcome::from_json(m["outcome"]), &m["solution"]);
+  }
+  EXPECT_EQ(handed, (std::vector<std::pair<Stage, int>>{{Stage::kRefine, 1}}));
+  EXPECT_FALSE(again.await_work());
+  again.finish();
+  const json best = json::parse(std::ifstream(dir + "/best.json"));
+  EXPECT_EQ(best["scenes"]["one_robot_axis"]["start"], 1);
+  EXPECT_EQ(best["starts_finished"], 6);
+}
+
+TEST(ScreenedSearch, WithoutScreeningEveryTaskIsAFullStart) {
+  const SearchPlan plan = load_search_plan({config("scenarios/one_robot_axis.yaml")}, 3, 1, {});
+  TaskQueue q(plan, 0.0, {});
+  int n = 0;
+  while (const auto t = q.next(0, 0.0)) {
+    EXPECT_EQ(t->stage, Stage::kFull);
+    EXPECT_TRUE(t->guess.is_null());
+    EXPECT_FALSE(q.refines_to_come(0.0));
+    ++n;
+  }
+  EXPECT_EQ(n, 3);
+  EXPECT_EQ(q.total(), 3);
+}
+
+TEST(ScreenedSearch, UnderATimeLimitScreensStopAtTheShareAndTheirBudgetsEndThere) {
+  const SearchPlan plan = load_search_plan({config("scenarios/one_robot_axis.yaml")}, 3, 1, {});
+  TaskQueue q(plan, /*search*/ 100.0, {}, {}, screening(1));
+  const auto first = q.next(0, 10.0);
+  ASSERT_TRUE(first);
+  EXPECT_EQ(first->stage, Stage::kScreen);
+  EXPECT_DOUBLE_EQ(first->budget, 40.0) << "until half of the search's 100 s";
+  EXPECT_EQ(first->source, BudgetSource::kSearch);
+  EXPECT_TRUE(q.screens_open(0, 10.0));
+  EXPECT_FALSE(q.next(0, 50.0)) << "the screening share is used: no more screens";
+  q.finished(first->scene, first->start);
+  EXPECT_FALSE(q.screens_open(0, 50.0));
+  EXPECT_TRUE(q.refines_to_come(50.0));
+  EXPECT_FALSE(q.refines_to_come(100.0)) << "the search's limit has passed";
+}
+
+}  // namespace
+}  // namespace disco
