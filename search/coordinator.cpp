@@ -66,8 +66,9 @@ void Coordinator::advance_stages(double now) {
     const int s = static_cast<int>(i);
     if (queue_.refined(s) || queue_.screens_open(s, now)) continue;
     const std::string& name = plan_.scenes[i].scene.name;
+    const std::map<int, StartOutcome> screens = record_.screened(s);
     std::vector<Screened> screened;
-    for (const auto& [k, o] : record_.screened(s)) {
+    for (const auto& [k, o] : screens) {
       const std::string key = o.best_class.is_object() ? o.best_class.value("key", "") : "";
       screened.push_back({k, o.certified() ? o.value : std::numeric_limits<double>::quiet_NaN(), key});
     }
@@ -78,7 +79,6 @@ void Coordinator::advance_stages(double now) {
       if (std::find(chosen.begin(), chosen.end(), k) == chosen.end()) chosen.push_back(k);
     std::vector<Task> tasks;
     std::string words;
-    const std::map<int, StartOutcome> screens = record_.screened(s);
     for (int k : chosen) {
       const auto it = screens.find(k);
       words += fmt::format("{}{} ({:.6f})", words.empty() ? "" : ", ", k,
