@@ -94,8 +94,10 @@ struct Reduction {
   }
   // Salvage (objective_reduction.h): after `cut` (a step or minimisation the time limit cut
   // short, recorded), its branch minimised under T_f <= T_best, by the limit itself.
-  void salvage(const MpccResult& cut) {
-    if (!time_up || cut.solved() || cfg.salvage_iterations <= 0 ||
+  // A minimisation that ended at Ipopt's max_iter (`stalled`) is salvaged the same way, and the
+  // loop goes on from what that gave.
+  void salvage(const MpccResult& cut, bool stalled = false) {
+    if (!(time_up || stalled) || cut.solved() || cfg.salvage_iterations <= 0 ||
         interrupt_requested() || cut.elastic_point.z.size() == 0)
       return;
     branch(cut, SolveKind::kSalvage, 0, cfg.salvage_iterations);
@@ -140,7 +142,7 @@ struct Reduction {
     record(SolveKind::kMinimize, bound, r, improved);
     const bool converged = r.solved();
     if (improved) take_best(std::move(r), converged, bound);
-    else salvage(r);
+    else salvage(r, r.outcome == NlpOutcome::kMaxIterations);
     return converged;
   }
 

@@ -668,6 +668,70 @@ TEST(ObjectiveReductionSalvage, ASolveCutByTheTimeLimitIsSalvagedOnItsBranch) {
                                              d.solver.settings().complementarity_tol));
 }
 
+// A minimisation that stalls at Ipopt's max_iter is salvaged on its branch, without a time
+// limit, and the loop goes on from there; with salvage_iterations 0 the stalled point is lost.
+// Ipopt's max_iter is made small so that a minimisation of paper B1 (20 steps) stalls; the first
+// of a few values that stalls one is taken (a fact of the path, the same on any machine).
+TEST(ObjectiveReductionSalvage, AMinimisationStalledAtMaxIterIsSalvagedAndTheLoopGoesOn) {
+  RobotProblem problem(scenario("paper/B1", {"steps=20"}));
+  auto stalled = [](const SolveRecord& r) {
+    return r.kind == SolveKind::kMinimize && r.outcome == NlpOutcome::kMaxIterations;
+  };
+  for (const char* max_iter : {"100", "60", "150", "80"}) {
+    DefaultSolvers d({std::string("ipopt.max_iter=") + max_iter});
+    ASSERT_GT(d.schedule.salvage_iterations, 0) << "configs/disco.yaml salvages";
+    ASSERT_EQ(d.schedule.time_limit, 0.0);
+    const ReductionResult result = reduce_objective(problem, d.solver, d.schedule);
+    const auto first = std::find_if(result.solves.begin(), result.solves.end(), stalled);
+    if (first == result.solves.end()) {
+      std::printf("  max_iter %s: no minimisation stalled, the next value\n", max_iter);
+      continue;
+    }
+    std::printf("  max_iter %s\n", max_iter);
+    print(result);
+    ASSERT_TRUE(result.found);
+    EXPECT_NE(result.stop, StopReason::kOutOfTime) << "no limit: the loop ends on its own";
+    int salvages = 0, improved = 0;
+    for (size_t k = 0; k < result.solves.size(); ++k) {
+      const SolveRecord& r = result.solves[k];
+      if (stalled(r)) {
+        ASSERT_LT(k + 1, result.solves.size()) << "a stalled minimisation is followed by its salvage";
+        EXPECT_EQ(result.solves[k + 1].kind, SolveKind::kSalvage);
+      }
+      if (r.kind != SolveKind::kSalvage) continue;
+      ++salvages;
+      ASSERT_GT(k, 0u);
+      EXPECT_TRUE(stalled(result.solves[k - 1])) << "only a stalled (or cut) solve is salvaged";
+      EXPECT_LE(r.iterations, d.schedule.salvage_iterations * r.nlp_solves);
+      if (r.improved) {
+        ++improved;
+        EXPECT_EQ(r.status, MpccStatus::kSolved);
+        EXPECT_LT(r.value, r.bound) << "below the best it was asked to beat";
+      }
+    }
+    EXPECT_GE(salvages, 1);
+    ASSERT_GE(improved, 1) << "the stalled point was within reach of its branch";
+    // The loop did not end at a salvage that improved: it went on from the salvaged point.
+    const auto last_improving_salvage =
+        std::find_if(result.solves.rbegin(), result.solves.rend(), [](const SolveRecord& r) {
+          return r.kind == SolveKind::kSalvage && r.improved;
+        });
+    EXPECT_NE(last_improving_salvage, result.solves.rbegin()) << "the loop goes on";
+    EXPECT_TRUE(result.best.certificate.within(d.solver.settings().violation_tol,
+                                               d.solver.settings().complementarity_tol));
+
+    // Without salvage the same path up to the first stall, whose point is lost.
+    ReductionSettings none = d.schedule;
+    none.salvage_iterations = 0;
+    const ReductionResult lost = reduce_objective(problem, d.solver, none);
+    const size_t j = static_cast<size_t>(first - result.solves.begin());
+    expect_same_path(lost, result, j + 1);
+    EXPECT_EQ(count_kind(lost, SolveKind::kSalvage), 0);
+    return;
+  }
+  FAIL() << "no max_iter tried stalled a minimisation of paper B1 at 20 steps";
+}
+
 TEST(ObjectiveReduction, AnUnknownMinimizerIsAnErrorNamingTheKey) {
   Settings settings = Settings::load(default_settings_path());
   settings.apply_override("reduction.minimize=fast");
