@@ -55,6 +55,18 @@ ReductionState with_phase(ReductionState s, Phase phase) {
   return s;
 }
 
+// The first step after the feasible point: a start from a trajectory with guess_minimize
+// minimises at once (its point lies near a local optimum); every other start takes the
+// reduction's minimising steps.
+ReductionState after_feasible(ReductionState s, const PhaseOutcome& o,
+                              const ReductionSettings& cfg) {
+  if (cfg.guess_minimize && cfg.horizon > 0.0 && !o.horizon_fixed && !o.out_of_time) {
+    s.minimized = true;
+    return with_phase(s, Phase::kEarlyMinimize);
+  }
+  return admit(with_phase(s, Phase::kMinimizingStep), o, cfg);
+}
+
 // The phases whose solve is a step of the reduction (they count towards dominated_after).
 bool is_step(Phase phase) {
   return phase == Phase::kMinimizingStep || phase == Phase::kFixedStep ||
@@ -126,7 +138,7 @@ ReductionState next_phase(const ReductionState& state, const PhaseOutcome& o,
       s.attempt += 1;
       if (o.solved) {
         if (o.perturb && !o.out_of_time) return with_phase(s, Phase::kPerturbed);
-        return admit(with_phase(s, Phase::kMinimizingStep), o, cfg);
+        return after_feasible(s, o, cfg);
       }
       if (s.attempt < (o.horizon_fixed ? 1 : kFeasibilityAttempts) && !o.out_of_time)
         return with_phase(s, Phase::kFeasibility);
@@ -134,7 +146,7 @@ ReductionState next_phase(const ReductionState& state, const PhaseOutcome& o,
                : o.horizon_fixed ? StopReason::kNoFeasiblePointAtHorizon
                                  : StopReason::kNoFeasiblePoint;
       return with_phase(s, Phase::kDone);
-    case Phase::kPerturbed: return admit(with_phase(s, Phase::kMinimizingStep), o, cfg);
+    case Phase::kPerturbed: return after_feasible(s, o, cfg);
     case Phase::kMinimizingStep:
       s.steps += 1;
       // It stalled: retry this bound as a fixed step, and take fixed steps from now on.

@@ -4,6 +4,8 @@
 // reduce_objective runs the solve of the current phase and asks next_phase where to go.
 //
 //   kFeasibility --solved--> kPerturbed (if asked) --> kMinimizingStep
+//                                                  (--> kEarlyMinimize instead: a start from a
+//                                                   trajectory with feasibility.guess_minimize)
 //        |  not solved: again at twice the horizon, three attempts, then kDone
 //   kMinimizingStep --failed (did not converge)--> kFixedStep (same rate)
 //                   --new best inside its bound--> kProbe (a local optimum)

@@ -63,6 +63,46 @@ TEST(ReductionPhases, AFeasiblePointLeadsToThePerturbationWhenOneIsAsked) {
   EXPECT_EQ(next_phase(begin_reduction(schedule()), o, schedule()).phase, Phase::kDone);
 }
 
+// feasibility.guess_minimize: a start from a trajectory (its own first horizon) minimises
+// right after its feasible point; the early minimisation then counts as the loop's
+// minimisation, so a converged one is probed below and a failed probe ends the loop.
+TEST(ReductionPhases, AStartFromATrajectoryMinimisesFirstWhenAsked) {
+  ReductionSettings given = schedule();
+  given.horizon = 12.0;  // a start from a trajectory
+  given.guess_minimize = true;
+  ReductionState s = next_phase(begin_reduction(given), improved(), given);
+  EXPECT_EQ(s.phase, Phase::kEarlyMinimize);
+  EXPECT_TRUE(s.minimized);
+  EXPECT_EQ(s.rate, 0.05);
+  s = next_phase(s, improved(true), given);
+  EXPECT_EQ(s.phase, Phase::kProbe);
+  s = next_phase(s, no_gain(), given);
+  EXPECT_EQ(s.phase, Phase::kDone);  // minimised already: no final minimisation
+  EXPECT_EQ(s.stop, StopReason::kLocalOptimum);
+
+  // A minimisation that does not converge hands over to the fixed steps, as the early one does.
+  s = next_phase(next_phase(begin_reduction(given), improved(), given), failed(), given);
+  EXPECT_EQ(s.phase, Phase::kFixedStep);
+
+  // After step 1b too.
+  PhaseOutcome perturb = improved();
+  perturb.perturb = true;
+  s = next_phase(begin_reduction(given), perturb, given);
+  EXPECT_EQ(s.phase, Phase::kPerturbed);
+  EXPECT_EQ(next_phase(s, no_gain(), given).phase, Phase::kEarlyMinimize);
+
+  // Not for a start from its own guess, nor without the setting, nor when T_f is fixed.
+  ReductionSettings own = given;
+  own.horizon = 0.0;
+  EXPECT_EQ(next_phase(begin_reduction(own), improved(), own).phase, Phase::kMinimizingStep);
+  ReductionSettings off = given;
+  off.guess_minimize = false;
+  EXPECT_EQ(next_phase(begin_reduction(off), improved(), off).phase, Phase::kMinimizingStep);
+  PhaseOutcome fixed = improved();
+  fixed.horizon_fixed = true;
+  EXPECT_EQ(next_phase(begin_reduction(given), fixed, given).phase, Phase::kMinimizingStep);
+}
+
 TEST(ReductionPhases, TheFeasibilityPhaseTriesThreeHorizons) {
   ReductionState s = begin_reduction(schedule());
   s = next_phase(s, failed(), schedule());

@@ -158,6 +158,7 @@ ReductionSettings reduction_settings(const Settings& s) {
   r.horizon_factor = positive(s, "feasibility.horizon_factor");
   r.horizon_min = positive(s, "feasibility.horizon_min");
   r.guess_slack = non_negative(s, "feasibility.guess_slack");
+  r.guess_minimize = s.boolean("feasibility.guess_minimize");
   r.coarse_fraction = fraction_or_none(s, "feasibility.coarse_fraction");
   r.rate = below_one(s, "reduction.rate");
   r.grow = positive(s, "reduction.grow");

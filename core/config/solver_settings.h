@@ -39,6 +39,10 @@ struct ReductionSettings {
   // A start from a trajectory (search/trajectory.h): its first feasibility horizon is
   // (1 + guess_slack) times the trajectory's T_f.
   double guess_slack = 0.0;
+  // A start from a trajectory: right after its feasibility solve (and step 1b) it minimises
+  // T_f from there, then probes below (search/reduction_phases.h), instead of the reduction's
+  // steps: its answer already lies near a local optimum.
+  bool guess_minimize = false;
   // > 0: a start first solves the scene at round(coarse_fraction N_t) steps, then the full
   // scene from that answer (coarse to fine, search/solve_scene.h); 0: no coarse stage.
   double coarse_fraction = 0.0;
