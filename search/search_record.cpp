@@ -25,6 +25,20 @@ bool is_final(const StartOutcome& o, const SceneJob& job) {
   return true;
 }
 
+bool SearchRecord::final_outcome(int s, const StartOutcome& o) const {
+  return is_final(o, plan_.scenes[s]) &&
+         (o.stage != Stage::kRefine || !stale_refines_.count({s, o.start}));
+}
+
+void SearchRecord::note_refine(int s, const StartOutcome& o) {
+  if (o.stage != Stage::kRefine) return;
+  const auto screen = screens_.find({s, o.start});
+  if (screen != screens_.end() && !is_final(screen->second, plan_.scenes[s]))
+    stale_refines_.insert({s, o.start});
+  else
+    stale_refines_.erase({s, o.start});
+}
+
 SearchRecord::SearchRecord(const SearchPlan& plan, const std::string& out_dir, std::uint64_t seed,
                            bool resumed, bool shared)
     : plan_(plan), out_(out_dir), seed_(seed), shared_(shared), best_(plan.scenes.size()) {
@@ -68,7 +82,7 @@ void SearchRecord::record(const StartOutcome& o, const json* solution, double no
     record_result(o, solution, line, s, now, scene_started);
   }
   append(line.dump());
-  if (s >= 0 && is_final(o, plan_.scenes[s])) {
+  if (s >= 0 && final_outcome(s, o)) {
     ++finished_;
   } else {
     ++cut_short_;
@@ -138,13 +152,14 @@ SearchRecord::Standing SearchRecord::update(int s, const StartOutcome& o, double
   Best& b = best_[s];
   b.last_s = now;
   outcomes_[{s, o.start}] = o;
+  note_refine(s, o);
   b.run = b.solved = b.cut_short = 0;
   // The least J, ties to the lower start (map order): of all outcomes, and of the final ones.
   const StartOutcome* least = nullptr;
   const StartOutcome* least_final = nullptr;
   for (auto it = outcomes_.lower_bound({s, 0}); it != outcomes_.end() && it->first.first == s; ++it) {
     const StartOutcome& x = it->second;
-    const bool is_last = is_final(x, plan_.scenes[s]);
+    const bool is_last = final_outcome(s, x);
     ++b.run;
     if (!is_last) ++b.cut_short;
     if (!x.certified()) continue;
@@ -209,7 +224,7 @@ void SearchRecord::read_earlier(const std::string& path, std::uint64_t seed) {
   recover_lines(path, seed, lines);
   int again = 0;
   for (const auto& [key, o] : outcomes_) {
-    if (is_final(o, plan_.scenes[key.first])) {
+    if (final_outcome(key.first, o)) {
       done_.insert(key);
     } else {
       ++again;

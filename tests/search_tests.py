@@ -138,7 +138,16 @@ def refine_choice(screens, count):
 
 def check_consistent(out, label, timing=False, limited=False):
     rs, b = runs(out), best(out)
-    final = [(r["scene"], r["start"], r.get("stage", "full")) for r in rs if r["status"] not in CUT]
+    # A refine from the answer of a screen cut short is not final either: --resume runs the
+    # screen again, then the refine (search/search_record.h, stale_refines_).
+    screen_status, final = {}, []
+    for r in rs:
+        key = (r["scene"], r["start"])
+        if r.get("stage") == "screen":
+            screen_status[key] = r["status"]
+        stale = r.get("stage") == "refine" and screen_status.get(key) in CUT
+        if r["status"] not in CUT and not stale:
+            final.append((r["scene"], r["start"], r.get("stage", "full")))
     check(len(final) == len(set(final)), f"{label}: every start ended once ({len(final)} final lines)")
     rs = latest(rs)
     check(all(r["status"] not in CUT for r in rs), f"{label}: no start left cut short")

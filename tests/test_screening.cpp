@@ -212,6 +212,50 @@ TEST(ScreenedSearch, AResumeSkipsEndedScreensAndRefinesAndChoosesFromTheRecorded
   EXPECT_EQ(best["starts_finished"], 6);
 }
 
+// A screen cut short by a time limit can still hold a certified point (its salvage), be chosen
+// and refined from it. Such a refine is not final: --resume runs the screen again and then the
+// refine from the screen's new answer, so the resumed search holds the runs of a search that
+// was never cut (tests/search_tests.py killrandom_screened). A refine from a screen that ended
+// is final and is not run again.
+TEST(ScreenedSearch, ARefineOfAScreenCutShortRunsAgainAfterItsScreenOnResume) {
+  const SearchPlan plan = load_search_plan({config("scenarios/one_robot_axis.yaml")}, 4, 1, {});
+  const std::string dir = fresh_dir("stale");
+  {  // The first run: screen 2 is cut by the limit (with a certified point), both refines end.
+    Coordinator c(plan, dir, 1, 0.0, false, false, {}, screening(2));
+    std::vector<std::pair<Stage, int>> handed;
+    while (const auto t = c.next(0)) {
+      handed.push_back({t->stage, t->start});
+      const double T_f = t->stage == Stage::kScreen ? screened_T_f(t->start) : refined_T_f(t->start);
+      json m = outcome_message(plan, *t, T_f, class_of(t->start));
+      if (t->stage == Stage::kScreen && t->start == 2) m["outcome"]["status"] = "time_limit";
+      c.record(StartOutcome::from_json(m["outcome"]), &m["solution"]);
+    }
+    ASSERT_EQ(handed, (std::vector<std::pair<Stage, int>>{{Stage::kScreen, 0}, {Stage::kScreen, 1},
+                                                          {Stage::kScreen, 2}, {Stage::kScreen, 3},
+                                                          {Stage::kRefine, 2}, {Stage::kRefine, 1}}));
+    c.finish();
+    const json best = json::parse(std::ifstream(dir + "/best.json"));
+    EXPECT_EQ(best["starts_finished"], 4) << "the cut screen and the refine from it are not final";
+  }
+  Coordinator again(plan, dir, 1, 0.0, true, false, {}, screening(2));
+  std::vector<std::pair<Stage, int>> handed;
+  while (const auto t = again.next(0)) {
+    handed.push_back({t->stage, t->start});
+    const double T_f = t->stage == Stage::kScreen ? screened_T_f(t->start) : refined_T_f(t->start);
+    json m = outcome_message(plan, *t, T_f, class_of(t->start));
+    if (t->stage == Stage::kScreen) m["solution"]["made_by"] = "screen 2, again";
+    if (t->stage == Stage::kRefine)  // from the screen's new answer
+      EXPECT_EQ(t->guess.at("made_by"), "screen 2, again");
+    again.record(StartOutcome::from_json(m["outcome"]), &m["solution"]);
+  }
+  EXPECT_EQ(handed, (std::vector<std::pair<Stage, int>>{{Stage::kScreen, 2}, {Stage::kRefine, 2}}));
+  EXPECT_FALSE(again.await_work());
+  again.finish();
+  const json best = json::parse(std::ifstream(dir + "/best.json"));
+  EXPECT_EQ(best["starts_finished"], 6);
+  EXPECT_EQ(best["scenes"]["one_robot_axis"]["start"], 1);
+}
+
 TEST(ScreenedSearch, WithoutScreeningEveryTaskIsAFullStart) {
   const SearchPlan plan = load_search_plan({config("scenarios/one_robot_axis.yaml")}, 3, 1, {});
   TaskQueue q(plan, 0.0, {});
