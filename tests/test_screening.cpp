@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -212,6 +213,21 @@ TEST(ScreenedSearch, AResumeSkipsEndedScreensAndRefinesAndChoosesFromTheRecorded
   EXPECT_EQ(best["starts_finished"], 6);
 }
 
+// Runs every task `c` hands out (one rank), each ending at its made-up T_f after `edit` may
+// change its message; returns the tasks handed out, in order.
+std::vector<std::pair<Stage, int>> run_all(const SearchPlan& plan, Coordinator& c,
+                                           const std::function<void(const Task&, json&)>& edit) {
+  std::vector<std::pair<Stage, int>> handed;
+  while (const auto t = c.next(0)) {
+    handed.push_back({t->stage, t->start});
+    const double T_f = t->stage == Stage::kScreen ? screened_T_f(t->start) : refined_T_f(t->start);
+    json m = outcome_message(plan, *t, T_f, class_of(t->start));
+    edit(*t, m);
+    c.record(StartOutcome::from_json(m["outcome"]), &m["solution"]);
+  }
+  return handed;
+}
+
 // A screen cut short by a time limit can still hold a certified point (its salvage), be chosen
 // and refined from it. Such a refine is not final: --resume runs the screen again and then the
 // refine from the screen's new answer, so the resumed search holds the runs of a search that
@@ -222,14 +238,9 @@ TEST(ScreenedSearch, ARefineOfAScreenCutShortRunsAgainAfterItsScreenOnResume) {
   const std::string dir = fresh_dir("stale");
   {  // The first run: screen 2 is cut by the limit (with a certified point), both refines end.
     Coordinator c(plan, dir, 1, 0.0, false, false, {}, screening(2));
-    std::vector<std::pair<Stage, int>> handed;
-    while (const auto t = c.next(0)) {
-      handed.push_back({t->stage, t->start});
-      const double T_f = t->stage == Stage::kScreen ? screened_T_f(t->start) : refined_T_f(t->start);
-      json m = outcome_message(plan, *t, T_f, class_of(t->start));
-      if (t->stage == Stage::kScreen && t->start == 2) m["outcome"]["status"] = "time_limit";
-      c.record(StartOutcome::from_json(m["outcome"]), &m["solution"]);
-    }
+    const auto handed = run_all(plan, c, [](const Task& t, json& m) {
+      if (t.stage == Stage::kScreen && t.start == 2) m["outcome"]["status"] = "time_limit";
+    });
     ASSERT_EQ(handed, (std::vector<std::pair<Stage, int>>{{Stage::kScreen, 0}, {Stage::kScreen, 1},
                                                           {Stage::kScreen, 2}, {Stage::kScreen, 3},
                                                           {Stage::kRefine, 2}, {Stage::kRefine, 1}}));
@@ -238,16 +249,11 @@ TEST(ScreenedSearch, ARefineOfAScreenCutShortRunsAgainAfterItsScreenOnResume) {
     EXPECT_EQ(best["starts_finished"], 4) << "the cut screen and the refine from it are not final";
   }
   Coordinator again(plan, dir, 1, 0.0, true, false, {}, screening(2));
-  std::vector<std::pair<Stage, int>> handed;
-  while (const auto t = again.next(0)) {
-    handed.push_back({t->stage, t->start});
-    const double T_f = t->stage == Stage::kScreen ? screened_T_f(t->start) : refined_T_f(t->start);
-    json m = outcome_message(plan, *t, T_f, class_of(t->start));
-    if (t->stage == Stage::kScreen) m["solution"]["made_by"] = "screen 2, again";
-    if (t->stage == Stage::kRefine)  // from the screen's new answer
-      EXPECT_EQ(t->guess.at("made_by"), "screen 2, again");
-    again.record(StartOutcome::from_json(m["outcome"]), &m["solution"]);
-  }
+  const auto handed = run_all(plan, again, [](const Task& t, json& m) {
+    if (t.stage == Stage::kScreen) m["solution"]["made_by"] = "screen 2, again";
+    if (t.stage == Stage::kRefine)  // from the screen's new answer
+      EXPECT_EQ(t.guess.at("made_by"), "screen 2, again");
+  });
   EXPECT_EQ(handed, (std::vector<std::pair<Stage, int>>{{Stage::kScreen, 2}, {Stage::kRefine, 2}}));
   EXPECT_FALSE(again.await_work());
   again.finish();
