@@ -251,8 +251,9 @@ TEST(ScreenedSearch, ARefineOfAScreenCutShortRunsAgainAfterItsScreenOnResume) {
   Coordinator again(plan, dir, 1, 0.0, true, false, {}, screening(2));
   const auto handed = run_all(plan, again, [](const Task& t, json& m) {
     if (t.stage == Stage::kScreen) m["solution"]["made_by"] = "screen 2, again";
-    if (t.stage == Stage::kRefine)  // from the screen's new answer
+    if (t.stage == Stage::kRefine) {  // from the screen's new answer
       EXPECT_EQ(t.guess.at("made_by"), "screen 2, again");
+    }
   });
   EXPECT_EQ(handed, (std::vector<std::pair<Stage, int>>{{Stage::kScreen, 2}, {Stage::kRefine, 2}}));
   EXPECT_FALSE(again.await_work());

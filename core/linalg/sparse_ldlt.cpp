@@ -142,13 +142,17 @@ void SparseLdlt::scale() {
   for (int sweep = 0; sweep < settings_.scaling_sweeps; ++sweep) {
     std::fill(largest.begin(), largest.end(), 0.0);
     for (int k = 0; k < n_; ++k) {
+      // Column k holds rows i <= k, so no earlier column reached largest[k]: its own maximum is
+      // kept in a register (a max is exact: the same bits as updating largest[k] entry by entry).
       const double sk = s_[k];
+      double column = 0.0;
       for (int p = ap_[k]; p < ap_[k + 1]; ++p) {
         const int i = ai_[p];
         const double v = std::abs(ax_[p]) * s_[i] * sk;
-        largest[i] = std::max(largest[i], v);
-        largest[k] = std::max(largest[k], v);
+        if (i != k) largest[i] = std::max(largest[i], v);
+        column = std::max(column, v);
       }
+      largest[k] = column;
     }
     for (int k = 0; k < n_; ++k)
       if (largest[k] > 0.0) s_[k] /= std::sqrt(largest[k]);
@@ -162,12 +166,15 @@ SparseLdlt::Factorised SparseLdlt::factor(const double* values, const LdltSettin
   for (int t = 0; t < nnz; ++t) ax_[slot_[t]] += values[t];
   std::fill(row_norm_.begin(), row_norm_.end(), 0.0);
   for (int k = 0; k < n_; ++k) {
+    // As in scale(): row k's sum over column k in a register, added in the same order.
+    double column = 0.0;
     for (int p = ap_[k]; p < ap_[k + 1]; ++p) {
       const double a = std::abs(ax_[p]);
       if (!std::isfinite(a)) return Factorised::kNotFinite;
-      row_norm_[ai_[p]] += a;
-      if (ai_[p] != k) row_norm_[k] += a;
+      if (ai_[p] != k) row_norm_[ai_[p]] += a;
+      column += a;
     }
+    row_norm_[k] = column;
   }
   norm_ = n_ > 0 ? *std::max_element(row_norm_.begin(), row_norm_.end()) : 0.0;
   empty_rows_ = static_cast<int>(std::count(row_norm_.begin(), row_norm_.end(), 0.0));
