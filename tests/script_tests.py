@@ -36,7 +36,7 @@ from script_checks import check, finish  # noqa: E402
 
 SCRIPTS, WORK, MODE = sys.argv[1], sys.argv[2], sys.argv[3]
 sys.path.insert(0, SCRIPTS)
-from common import arguments, paths, results  # noqa: E402
+from common import arguments, paths, results, tables  # noqa: E402
 from common.solve import solve  # noqa: E402
 
 
@@ -130,6 +130,11 @@ def test_common():
     except SystemExit as e:
         check("not an executable file" in str(e), f"--disco naming no file exits: {e}")
 
+    # The sign test against sums done by hand: 5 : 0 is 2 / 2^5; 6 : 2 is 2 (1 + 8 + 28) / 2^8.
+    for worse, better, p in ((5, 0, 0.0625), (0, 5, 0.0625), (6, 2, 74 / 256), (3, 3, 1.0),
+                             (0, 0, 1.0), (1, 0, 1.0)):
+        check(abs(tables.sign_test(worse, better) - p) < 1e-12,
+              f"sign test {worse} : {better} is {p} ({tables.sign_test(worse, better)})")
     for parse, text, ok in ((arguments.comma_list(int), "25,50", [25, 50]),
                             (arguments.int_at_least(2), "2", 2),
                             (arguments.int_in_range(100, 200, "a size"), "150", 150)):

@@ -1,5 +1,5 @@
-"""Numbers into tables: fmt, Markdown tables, CSV files, and the log-log fit the benchmarks
-state their growth rates with."""
+"""Numbers into tables: fmt, Markdown tables, CSV files, the log-log fit the benchmarks
+state their growth rates with, and the sign test they judge a split of starts with."""
 import csv
 import math
 import os
@@ -45,3 +45,14 @@ def loglog_fit(xs, ys):
         return None
     p = sum((a - mx) * (b - my) for a, b in pts) / sxx
     return p, my - p * mx
+
+
+def sign_test(worse, better):
+    """Two-sided exact sign test: the probability that `worse` + `better` fair coin flips split
+    at least as unevenly as worse : better (1 when they are even or there are none). Starts that
+    end elsewhere only through roundoff (a chaotic path) split like such coins."""
+    n, k = worse + better, max(worse, better)
+    if n == 0 or 2 * k == n:
+        return 1.0
+    tail = sum(math.comb(n, i) for i in range(k, n + 1)) / 2 ** n
+    return min(1.0, 2 * tail)
