@@ -1,6 +1,7 @@
 // disco — sparse symmetric indefinite LDLᵀ (core/linalg/sparse_ldlt.h says what and why).
 #include "core/linalg/sparse_ldlt.h"
 
+#include <Eigen/Core>
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCore>
 #include <algorithm>
@@ -154,8 +155,12 @@ void SparseLdlt::scale() {
       }
       largest[k] = column;
     }
-    for (int k = 0; k < n_; ++k)
-      if (largest[k] > 0.0) s_[k] /= std::sqrt(largest[k]);
+    // s_k ← s_k / √largest_k where largest_k > 0 (a row whose entries underflowed keeps s_k:
+    // / √1), in Eigen's packets: IEEE square roots and divisions, the same bits as one at a time.
+    for (double& l : largest)
+      if (!(l > 0.0)) l = 1.0;
+    Eigen::Map<Eigen::ArrayXd>(s_.data(), n_) /=
+        Eigen::Map<const Eigen::ArrayXd>(largest.data(), n_).sqrt();
   }
 }
 
