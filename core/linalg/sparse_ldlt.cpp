@@ -141,10 +141,10 @@ void SparseLdlt::scale() {
   std::fill(s_.begin(), s_.end(), 1.0);
   std::vector<double>& largest = w1_;
   for (int sweep = 0; sweep < settings_.scaling_sweeps; ++sweep) {
-    std::fill(largest.begin(), largest.end(), 0.0);
     for (int k = 0; k < n_; ++k) {
       // Column k holds rows i <= k, so no earlier column reached largest[k]: its own maximum is
-      // kept in a register (a max is exact: the same bits as updating largest[k] entry by entry).
+      // kept in a register and stored once, before any later column reads it (a max is exact:
+      // the same bits as updating largest[k] entry by entry; no clearing between sweeps).
       const double sk = s_[k];
       double column = 0.0;
       for (int p = ap_[k]; p < ap_[k + 1]; ++p) {
