@@ -295,8 +295,10 @@ int solve_checked(const SolveOptions& o, const Settings& settings, const Scene& 
     const std::string where = violations_text(run.info.violations);
     spdlog::warn("no certified solution: status {}{}", to_string(run.info.status), where.empty() ? "" : "; " + where);
   }
-  spdlog::info("KKT: {} factorisations, {} of them by MUMPS for disco's LDLᵀ (kkt.solver)",
-               run.info.kkt_factorisations, run.info.kkt_fallbacks);
+  spdlog::info("KKT: {} factorisations, {} of them by MUMPS for disco's LDLᵀ, {} by its pivoting "
+               "LDLᵀ for the other, {} pivot threshold raises (kkt.solver)",
+               run.info.kkt_factorisations, run.info.kkt_fallbacks, run.info.kkt_to_pivoted,
+               run.info.kkt_threshold_raises);
   spdlog::info("{} NLP solves, {} iterations, {:.3f} s; wrote {}", run.info.nlp_solves,
                run.info.iterations, run.info.wall_s, path);
   return run.solved() ? 0 : 3;

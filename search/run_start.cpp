@@ -92,7 +92,11 @@ json StartOutcome::to_json() const {
             {"max_complementarity", number_or_null(max_complementarity)}}},
           {"nlp_solves", nlp_solves},
           {"iterations", iterations},
-          {"kkt", {{"factorisations", kkt_factorisations}, {"fallbacks", kkt_fallbacks}}},
+          {"kkt",
+           {{"factorisations", kkt_factorisations},
+            {"fallbacks", kkt_fallbacks},
+            {"threshold_raises", kkt_threshold_raises},
+            {"to_pivoted", kkt_to_pivoted}}},
           {"seconds", seconds},
           {"time_to_first_feasible", time_to_first_feasible},
           {"time_to_best", time_to_best},
@@ -129,6 +133,8 @@ StartOutcome StartOutcome::from_json(const json& j) {
   if (j.contains("kkt")) {  // older files: none
     o.kkt_factorisations = j["kkt"].value("factorisations", 0);
     o.kkt_fallbacks = j["kkt"].value("fallbacks", 0);
+    o.kkt_threshold_raises = j["kkt"].value("threshold_raises", 0);
+    o.kkt_to_pivoted = j["kkt"].value("to_pivoted", 0);
   }
   o.seconds = j.value("seconds", 0.0);
   o.time_to_first_feasible = j.value("time_to_first_feasible", -1.0);
@@ -168,6 +174,8 @@ StartOutcome run_start(const Scene& scene, const Settings& settings, const Start
     out.iterations = r.iterations;
     out.kkt_factorisations = r.kkt.factorisations;
     out.kkt_fallbacks = r.kkt.fallbacks;
+    out.kkt_threshold_raises = r.kkt.threshold_raises;
+    out.kkt_to_pivoted = r.kkt.to_pivoted;
     out.time_to_first_feasible = r.time_to_first_feasible;
     out.time_to_best = r.time_to_best;
     for (const auto& i : r.history) out.history.push_back({i.seconds, i.value});

@@ -73,8 +73,9 @@ struct StartOutcome {
   double max_violation = std::numeric_limits<double>::quiet_NaN();
   double max_complementarity = std::numeric_limits<double>::quiet_NaN();
   int nlp_solves = 0, iterations = 0;
-  // KKT factorisations, and those that went to MUMPS (core/ipopt/kkt_solver.h)
-  int kkt_factorisations = 0, kkt_fallbacks = 0;
+  // KKT factorisations, those that went to MUMPS, the pivoting LDLᵀ's threshold raises, and
+  // the matrices the LDLᵀ passed to the pivoting one (core/ipopt/kkt_solver.h)
+  int kkt_factorisations = 0, kkt_fallbacks = 0, kkt_threshold_raises = 0, kkt_to_pivoted = 0;
   double seconds = 0.0;
   double time_to_first_feasible = -1.0, time_to_best = -1.0;  // s within the start
   std::string description;  // StartSpec::describe()

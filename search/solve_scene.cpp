@@ -125,6 +125,8 @@ SceneSolve solve_scene(const Scene& scene, const Settings& settings, const Start
   out.info.iterations = out.result.iterations;
   out.info.kkt_factorisations = out.result.kkt.factorisations;
   out.info.kkt_fallbacks = out.result.kkt.fallbacks;
+  out.info.kkt_threshold_raises = out.result.kkt.threshold_raises;
+  out.info.kkt_to_pivoted = out.result.kkt.to_pivoted;
   if (out.result.found) {
     out.z = out.result.best.z;
     out.info.stationarity = out.result.stationarity;

@@ -16,7 +16,8 @@ results  with a real disco: scripts/bench_stress and scripts/bench_examples on o
          nproc, memory, wall time) and the table; a second run with other options adds its own
          section and keeps the first. And common.solve on one_robot_axis: the solve log's
          iterations and NLP solves, summed, equal solution.json's timing (two records disco
-         writes independently). Then bench_kkt (BENCH_KKT, tests/bench_kkt.cpp) on a KKT matrix
+         writes independently). Then bench_kkt (BENCH_KKT, tests/bench_kkt.cpp; MUMPS and both
+         of disco's LDLT solvers) on a KKT matrix
          of known inertia written here, [H Jᵀ; J 0] with H positive definite, and on a truncated
          one; and scripts/bench_kkt on start 0 of A2 (a corpus it dumps with disco).
 """
@@ -267,7 +268,7 @@ def test_bench_kkt(bench):
         row = lines[1]
         check((row["n"], row["dual_from"], row["expected_negative"]) == (420, 300, 120),
               f"bench_kkt reads the file's sizes ({row['n']}, {row['dual_from']}, {row['expected_negative']})")
-        for name in ("mumps", "ldlt"):
+        for name in ("mumps", "ldlt", "pivoted"):
             s = row[name]
             check(s.get("negative") == 120 and (s.get("backward_error") or 1) < 1e-12 and s["factor_ms"] > 0
                   and s["solve_ms"] > 0, f"bench_kkt {name}: 120 negative eigenvalues, backward error "
@@ -289,6 +290,8 @@ def test_bench_kkt(bench):
     text = section_text(out, label) if os.path.isfile(out) and label in sections(out) else ""
     check(re.search(rf"^\| A2 \| {len(dumped)} \| \d+–\d+ \|", text, re.M) is not None,
           f"the section '{label}' has A2's row with its {len(dumped)} matrices")
+    check(re.search(rf"^\| A2 \| {len(dumped)} \| [\d.]+ / [\d.]+ / [\d.]+ \|", text, re.M) is not None,
+          f"the section '{label}' has the pivoting LDLT's row for A2")
 
 
 shutil.rmtree(WORK, ignore_errors=True)

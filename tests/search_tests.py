@@ -540,9 +540,10 @@ elif MODE == "manifest":
           f"--resume refuses runs without a manifest ({r.stderr[-200:]!r})")
 elif MODE in ("interrupt", "killrandom"):
     swap = os.path.join(os.path.dirname(BENCH), "../scenarios/two_robots_swap_avoid.yaml")
-    # interrupt: two starts of ~5 s each (120 steps; with disco's own KKT solver, 45 steps took
-    # under 1 s), so both ranks are inside one at the signal; killrandom: the smoke benchmark.
-    config = [swap, "--set", "scene.steps=120", "--starts", "2"] if MODE == "interrupt" else [BENCH]
+    # interrupt: two starts of ~8 s each on this machine (200 steps; 120 steps took ~3 s once the
+    # LDLᵀ's fallback was the pivoting LDLᵀ, too close to the signal at 2.5 s), so both ranks
+    # are inside one at the signal; killrandom: the smoke benchmark.
+    config = [swap, "--set", "scene.steps=200", "--starts", "2"] if MODE == "interrupt" else [BENCH]
 
     def command(out, *extra):
         return [DISCO, "search", *config, "--seed", "7", "--out", out, *DET, *extra]

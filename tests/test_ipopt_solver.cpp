@@ -217,23 +217,26 @@ TEST(IpoptSolverSolve, Hs071ReachesItsKnownOptimum) {
   EXPECT_LE(again.iterations, 2);
 }
 
-// The same known optimum through disco's LDLᵀ (kkt.solver ldlt, core/ipopt/kkt_solver.h),
-// every KKT matrix solved by it alone.
+// The same known optimum through disco's LDLᵀ solvers (kkt.solver ldlt and pivoted,
+// core/ipopt/kkt_solver.h), every KKT matrix solved by them alone.
 TEST(IpoptSolverSolve, Hs071ReachesItsKnownOptimumThroughDiscosLdlt) {
-  const Hs071 nlp;
-  Settings settings = Settings::load(default_settings_path());
-  settings.apply_override("kkt.solver=ldlt");
-  IpoptSolver solver(ipopt_settings(settings));
-  NlpPoint start;
-  start.z = (Vector(4) << 1.0, 5.0, 5.0, 1.0).finished();
-  const NlpResult r = solver.solve(nlp, start);
-  ASSERT_TRUE(r.converged()) << ipopt_status_name(r.ipopt_status);
-  EXPECT_NEAR(r.objective, 17.0140173, 1e-6);
-  EXPECT_NEAR(r.point.z[1], 4.7429996, 1e-6);
-  EXPECT_NEAR(r.point.z[2], 3.8211499, 1e-6);
-  EXPECT_NEAR(r.point.z[3], 1.3794083, 1e-6);
-  EXPECT_GE(r.kkt.factorisations, r.iterations);
-  EXPECT_EQ(r.kkt.fallbacks, 0);
+  for (const char* solver_name : {"ldlt", "pivoted"}) {
+    SCOPED_TRACE(solver_name);
+    const Hs071 nlp;
+    Settings settings = Settings::load(default_settings_path());
+    settings.apply_override(std::string("kkt.solver=") + solver_name);
+    IpoptSolver solver(ipopt_settings(settings));
+    NlpPoint start;
+    start.z = (Vector(4) << 1.0, 5.0, 5.0, 1.0).finished();
+    const NlpResult r = solver.solve(nlp, start);
+    ASSERT_TRUE(r.converged()) << ipopt_status_name(r.ipopt_status);
+    EXPECT_NEAR(r.objective, 17.0140173, 1e-6);
+    EXPECT_NEAR(r.point.z[1], 4.7429996, 1e-6);
+    EXPECT_NEAR(r.point.z[2], 3.8211499, 1e-6);
+    EXPECT_NEAR(r.point.z[3], 1.3794083, 1e-6);
+    EXPECT_GE(r.kkt.factorisations, r.iterations);
+    EXPECT_EQ(r.kkt.fallbacks, 0);
+  }
 }
 
 // Hs071 whose objective fails an internal check (a bug) from its `fail_at`-th evaluation on.

@@ -60,16 +60,52 @@ TEST(KktSolver, DiscosLdltSolvesAContactNlpWithoutMumps) {
   EXPECT_EQ(ldlt.kkt.fallbacks, 0);
 }
 
+// The pivoting LDLᵀ: the same contact NLP, no matrix to MUMPS, and every wrong inertia
+// answered from D's blocks (exact: no certificate, no regularisation).
+TEST(KktSolver, ThePivotingLdltSolvesAContactNlpWithoutMumps) {
+  const Contact c;
+  const NlpResult pivoted = c.solve(settings_with({"kkt.solver=pivoted"}));
+  ASSERT_TRUE(pivoted.converged()) << describe(pivoted.outcome, pivoted.ipopt_status);
+  EXPECT_GE(pivoted.kkt.factorisations, pivoted.iterations);
+  EXPECT_EQ(pivoted.kkt.fallbacks, 0);
+}
+
+// The pivoting LDLᵀ first factorises such a matrix again with a raised threshold (counted), up
+// to kkt.ldlt.pivoting.threshold_max; from 0.01 to 0.5: u ← √u twice (0.1, 0.316), then 0.5,
+// where it stays for the rest of the solve.
 TEST(KktSolver, AMatrixTheLdltCannotSolveToTheToleranceGoesToMumpsCounted) {
   const Contact c;
-  // A tolerance no solve reaches: every matrix goes to MUMPS.
-  const NlpResult all = c.solve(settings_with(
-      {"kkt.solver=ldlt", "kkt.ldlt.residual_tolerance=1e-300", "kkt.ldlt.refinement_steps=0"}));
-  ASSERT_TRUE(all.converged()) << describe(all.outcome, all.ipopt_status);
-  // Every iteration's accepted matrix went to MUMPS (a wrong inertia needs no solve: it is
-  // not sent), each after its own LDLᵀ factorisation.
-  EXPECT_GE(all.kkt.fallbacks, all.iterations);
-  EXPECT_GE(all.kkt.factorisations - all.kkt.fallbacks, all.kkt.fallbacks);
+  for (const char* solver_name : {"ldlt", "pivoted"}) {
+    SCOPED_TRACE(solver_name);
+    // A tolerance no solve reaches: every matrix goes to MUMPS.
+    const NlpResult all = c.solve(settings_with({std::string("kkt.solver=") + solver_name,
+                                                 "kkt.ldlt.fallback=mumps",
+                                                 "kkt.ldlt.residual_tolerance=1e-300",
+                                                 "kkt.ldlt.refinement_steps=0"}));
+    ASSERT_TRUE(all.converged()) << describe(all.outcome, all.ipopt_status);
+    // Every iteration's accepted matrix went to MUMPS (a wrong inertia needs no solve: it is
+    // not sent), each after its own LDLᵀ factorisation.
+    EXPECT_GE(all.kkt.fallbacks, all.iterations);
+    EXPECT_GE(all.kkt.factorisations - all.kkt.fallbacks, all.kkt.fallbacks);
+    EXPECT_EQ(all.kkt.threshold_raises, std::string(solver_name) == "pivoted" ? 3 : 0);
+  }
+}
+
+// kkt.ldlt.fallback pivoted: what the LDLᵀ cannot solve goes to the pivoting LDLᵀ (counted),
+// which solves it; MUMPS factorises nothing. With a tolerance only the LDLᵀ misses (no
+// refinement: its regularised factors alone), every accepted matrix is passed on.
+TEST(KktSolver, WithThePivotedFallbackTheLdltsMissesGoToThePivotingLdlt) {
+  const Contact c;
+  for (const std::string fallback : {"pivoted", "mumps"}) {
+    SCOPED_TRACE(fallback);
+    const NlpResult r = c.solve(settings_with({"kkt.solver=ldlt", "kkt.ldlt.fallback=" + fallback,
+                                               "kkt.ldlt.residual_tolerance=1e-14",
+                                               "kkt.ldlt.refinement_steps=0"}));
+    ASSERT_TRUE(r.converged()) << describe(r.outcome, r.ipopt_status);
+    const bool pivoted = fallback == "pivoted";
+    EXPECT_EQ(r.kkt.fallbacks > 0, !pivoted);
+    EXPECT_EQ(r.kkt.to_pivoted > 0, pivoted);
+  }
 }
 
 TEST(KktSolver, BadSettingsAreRefusedNamingTheKey) {
@@ -92,16 +128,29 @@ TEST(KktSolver, BadSettingsAreRefusedNamingTheKey) {
   EXPECT_NE(message("kkt.ldlt.certificate.margin=0.5").find("kkt.ldlt.certificate.margin"),
             std::string::npos);
   EXPECT_NE(message("kkt.dump.every=-2").find("kkt.dump.every"), std::string::npos);
+  EXPECT_NE(message("kkt.ldlt.pivoting.threshold=0").find("kkt.ldlt.pivoting.threshold"),
+            std::string::npos);
+  EXPECT_NE(message("kkt.ldlt.pivoting.threshold=0.6").find("kkt.ldlt.pivoting.threshold"),
+            std::string::npos);
+  EXPECT_NE(message("kkt.ldlt.pivoting.threshold_max=0.001")
+                .find("kkt.ldlt.pivoting.threshold_max"),
+            std::string::npos);
+  EXPECT_NE(message("kkt.ldlt.fallback=pardiso").find("kkt.ldlt.fallback"), std::string::npos);
+  EXPECT_NE(message("kkt.ldlt.pivoting.zero_pivot=-1").find("kkt.ldlt.pivoting.zero_pivot"),
+            std::string::npos);
 }
 
 TEST(KktSolver, TheObjectiveReductionEndsCertifiedWithTheLdlt) {
   const Scene scene = load_scene(
       std::string(DISCO_SOURCE_DIR) + "/configs/scenarios/two_robots_swap_avoid.yaml", {"steps=20"});
-  Settings settings = Settings::load(default_settings_path());
-  settings.apply_override("kkt.solver=ldlt");
-  const SceneSolve solve = solve_scene(scene, settings);
-  ASSERT_EQ(solve.result.status, MpccStatus::kSolved);
-  EXPECT_TRUE(solve.result.best.certificate.within(1e-6, 1e-6));
+  for (const char* solver_name : {"ldlt", "pivoted"}) {
+    SCOPED_TRACE(solver_name);
+    Settings settings = Settings::load(default_settings_path());
+    settings.apply_override(std::string("kkt.solver=") + solver_name);
+    const SceneSolve solve = solve_scene(scene, settings);
+    ASSERT_EQ(solve.result.status, MpccStatus::kSolved);
+    EXPECT_TRUE(solve.result.best.certificate.within(1e-6, 1e-6));
+  }
 }
 
 // With the inertia certificate on and a margin no estimate can pass, every wrong inertia of the
@@ -109,14 +158,16 @@ TEST(KktSolver, TheObjectiveReductionEndsCertifiedWithTheLdlt) {
 // are indefinite at some iterations: without the certificate, Ipopt meets wrong inertias.)
 TEST(KktSolver, AnUncertifiedWrongInertiaGoesToMumpsCounted) {
   const Contact c;
-  const NlpResult plain = c.solve(settings_with({"kkt.solver=ldlt"}));
+  const NlpResult plain = c.solve(settings_with({"kkt.solver=ldlt", "kkt.ldlt.fallback=mumps"}));
   ASSERT_TRUE(plain.converged());
-  const NlpResult strict = c.solve(settings_with(
-      {"kkt.solver=ldlt", "kkt.ldlt.certificate.iterations=3", "kkt.ldlt.certificate.margin=1e300"}));
+  const NlpResult strict = c.solve(
+      settings_with({"kkt.solver=ldlt", "kkt.ldlt.fallback=mumps",
+                     "kkt.ldlt.certificate.iterations=3", "kkt.ldlt.certificate.margin=1e300"}));
   ASSERT_TRUE(strict.converged());
   EXPECT_GT(strict.kkt.fallbacks, plain.kkt.fallbacks);
-  const NlpResult usual = c.solve(settings_with(
-      {"kkt.solver=ldlt", "kkt.ldlt.certificate.iterations=5", "kkt.ldlt.certificate.margin=2"}));
+  const NlpResult usual = c.solve(
+      settings_with({"kkt.solver=ldlt", "kkt.ldlt.fallback=mumps",
+                     "kkt.ldlt.certificate.iterations=5", "kkt.ldlt.certificate.margin=2"}));
   ASSERT_TRUE(usual.converged());
   EXPECT_LT(usual.kkt.fallbacks, strict.kkt.fallbacks);
 }
@@ -131,7 +182,7 @@ TEST(KktSolver, TheDumpWritesEveryKthMatrixInTheDocumentedFormat) {
   ASSERT_TRUE(r.converged());
   // Every matrix handed over for factorisation counts (not the degeneracy test's answered ones,
   // nor a fallback's second factorisation of the same matrix).
-  const int asked = r.kkt.factorisations - r.kkt.fallbacks;
+  const int asked = r.kkt.matrices();
   int files = 0;
   for (int k = 0; k < asked + 8; ++k) {
     char name[32];

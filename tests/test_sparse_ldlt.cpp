@@ -7,83 +7,16 @@
 
 #include <Eigen/Dense>
 #include <cmath>
-#include <random>
 #include <vector>
 
 #include "core/linalg/sparse_ldlt.h"
+#include "tests/test_support_kkt.h"
 
 namespace disco {
 namespace {
 
-// What configs/disco.yaml's kkt.ldlt holds (the tests do not depend on its values beyond the
-// tolerance they ask for).
-LdltSettings settings() {
-  LdltSettings s;
-  s.scaling_sweeps = 5;
-  s.regularisation = 1e-8;
-  s.residual_tolerance = 1e-12;
-  s.refinement_steps = 5;
-  s.growth_limit = 1e11;
-  s.certificate_iterations = 5;
-  s.certificate_margin = 2.0;
-  return s;
-}
-
-// A symmetric matrix in Ipopt's form: lower-triangle triplets, 1-based.
-struct Triplets {
-  int n = 0;
-  std::vector<int> rows, cols;
-  std::vector<double> values;
-  void add(int i, int j, double v) {  // 0-based, any triangle
-    rows.push_back(std::max(i, j) + 1);
-    cols.push_back(std::min(i, j) + 1);
-    values.push_back(v);
-  }
-  Eigen::MatrixXd dense() const {
-    Eigen::MatrixXd a = Eigen::MatrixXd::Zero(n, n);
-    for (size_t t = 0; t < values.size(); ++t) {
-      const int i = rows[t] - 1, j = cols[t] - 1;
-      a(i, j) += values[t];
-      if (i != j) a(j, i) += values[t];
-    }
-    return a;
-  }
-};
-
-// [H, Jᵀ; J, −c I] with H (nx × nx) sparse-ish and indefinite unless `convex`, J (m × nx) full
-// row rank (an identity block plus random entries), both with some repeated entries.
-Triplets kkt(int nx, int m, double c, bool convex, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  Triplets t;
-  t.n = nx + m;
-  for (int i = 0; i < nx; ++i) {
-    t.add(i, i, convex ? 2.0 + std::abs(u(rng)) * 1e3 : 3.0 * u(rng));
-    if (i + 1 < nx) t.add(i + 1, i, 0.5 * u(rng));
-    if (i % 3 == 0) t.add(i, i, 0.25);  // a repeat: summed
-  }
-  for (int r = 0; r < m; ++r) {
-    t.add(nx + r, r, 1.0 + std::abs(u(rng)));
-    for (int k = 0; k < 3; ++k) t.add(nx + r, (r * 7 + k * 5 + 3) % nx, u(rng));
-    if (c != 0.0) t.add(nx + r, nx + r, -c);
-  }
-  return t;
-}
-
-int negative_eigenvalues(const Eigen::MatrixXd& a) {
-  const Eigen::VectorXd ev = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(a).eigenvalues();
-  return static_cast<int>((ev.array() < 0).count());
-}
-
-double smallest_singular_value(const Eigen::MatrixXd& a) {
-  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(a).eigenvalues().cwiseAbs().minCoeff();
-}
-
-SparseLdlt analysed(const Triplets& t, int dual_from) {
-  SparseLdlt f;
-  f.analyse(t.n, static_cast<int>(t.values.size()), t.rows.data(), t.cols.data(), 1, dual_from);
-  return f;
-}
+using namespace testing_kkt;
+const auto analysed = testing_kkt::analysed<SparseLdlt>;
 
 TEST(SparseLdlt, KktMatricesGetTheDenseInertiaAndSolution) {
   int checked = 0;
@@ -140,13 +73,9 @@ TEST(SparseLdlt, RepeatedAndMirroredTripletsAreSummed) {
 // singular matrix too, where it is small only because x is huge (a matrix within that error of
 // A is solved exactly: what backward stability promises, and all any solver can give there).
 TEST(SparseLdlt, TheReportedBackwardErrorIsTheReturnedSolutions) {
-  // Two equal constraint rows: J is rank deficient, the KKT matrix singular.
   const Triplets t = kkt(12, 4, 0.0, true, 3);
   const int nx = 12;
-  Triplets s = t;
-  s.n = t.n + 1;
-  for (size_t k = 0; k < t.values.size(); ++k)  // row nx copied as row n
-    if (t.rows[k] == nx + 1 && t.cols[k] <= nx) s.add(t.n, t.cols[k] - 1, t.values[k]);
+  const Triplets s = with_a_repeated_constraint(t, nx);
   ASSERT_LT(smallest_singular_value(s.dense()), 1e-12);
   for (const Triplets* m : std::vector<const Triplets*>{&t, &s}) {
     const Eigen::MatrixXd a = m->dense();
@@ -263,20 +192,7 @@ TEST(SparseLdlt, ANanIsRefused) {
 }
 
 TEST(SparseLdlt, NewValuesOnTheSameStructureAndTheSameBitsTwice) {
-  const Triplets first = kkt(30, 10, 0.0, false, 11);
-  Triplets second = first;
-  for (double& v : second.values) v *= 1.5;
-  SparseLdlt f = analysed(first, 30);
-  Eigen::VectorXd runs[3];
-  const Triplets* order[3] = {&first, &second, &first};
-  for (int r = 0; r < 3; ++r) {
-    ASSERT_EQ(f.factor(order[r]->values.data(), settings()), SparseLdlt::Factorised::kDone);
-    runs[r] = Eigen::VectorXd::LinSpaced(first.n, 0.0, 1.0);
-    EXPECT_LE(f.solve(runs[r].data()), 1e-12);
-  }
-  // The second matrix is 1.5 times the first: its solution is the first's over 1.5.
-  EXPECT_LE((1.5 * runs[1] - runs[0]).norm(), 1e-9 * runs[0].norm());
-  for (int k = 0; k < first.n; ++k) EXPECT_EQ(runs[0][k], runs[2][k]);  // bit for bit
+  expect_new_values_then_the_same_bits<SparseLdlt>();
 }
 
 }  // namespace

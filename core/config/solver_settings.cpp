@@ -79,6 +79,14 @@ LdltSettings ldlt_settings(const Settings& s) {
   l.certificate_margin = s.number("kkt.ldlt.certificate.margin");
   if (!(l.certificate_margin >= 1))  // below 1, Weyl's inequality no longer vouches
     refuse(s, "kkt.ldlt.certificate.margin", "must be >= 1");
+  l.pivot_threshold = positive(s, "kkt.ldlt.pivoting.threshold");
+  if (l.pivot_threshold > 0.5) refuse(s, "kkt.ldlt.pivoting.threshold", "must be at most 0.5");
+  l.pivot_threshold_max = s.number("kkt.ldlt.pivoting.threshold_max");
+  if (!(l.pivot_threshold_max >= l.pivot_threshold && l.pivot_threshold_max <= 0.5))
+    refuse(s, "kkt.ldlt.pivoting.threshold_max", "must lie in [kkt.ldlt.pivoting.threshold, 0.5]");
+  l.zero_pivot = positive(s, "kkt.ldlt.pivoting.zero_pivot");
+  l.fallback_pivoted =
+      choice<bool>(s, "kkt.ldlt.fallback", {{"pivoted", true}, {"mumps", false}});
   return l;
 }
 
@@ -87,7 +95,9 @@ IpoptSettings ipopt_settings(const Settings& s) {
   i.options = ipopt_options(s);
   i.perturbed_first = s.boolean("kkt.perturbed_first");
   i.kkt_solver = choice<KktSolverKind>(
-      s, "kkt.solver", {{"mumps", KktSolverKind::kMumps}, {"ldlt", KktSolverKind::kLdlt}});
+      s, "kkt.solver", {{"mumps", KktSolverKind::kMumps},
+                                    {"ldlt", KktSolverKind::kLdlt},
+                                    {"pivoted", KktSolverKind::kPivoted}});
   i.ldlt = ldlt_settings(s);
   i.dump.every = integer_at_least(s, "kkt.dump.every", 0);
   i.dump.dir = s.text("kkt.dump.dir");

@@ -37,6 +37,8 @@ struct IpoptOption {
 enum class KktSolverKind {
   kMumps,  // Ipopt's MUMPS interface
   kLdlt,   // disco's LDLᵀ (core/linalg/sparse_ldlt.h), MUMPS for what it cannot solve
+  kPivoted,  // disco's pivoting LDLᵀ (core/linalg/pivoted_ldlt.h), MUMPS for what it cannot
+             // solve
 };
 
 // kkt.dump: every `every`-th factorised KKT matrix to `dir` (0: none; core/ipopt/kkt_solver.h).
@@ -51,7 +53,7 @@ struct IpoptSettings {
   // degenerate-Hessian mode) instead of first trying none: core/ipopt/kkt_solver.h.
   bool perturbed_first = false;
   KktSolverKind kkt_solver = KktSolverKind::kMumps;
-  LdltSettings ldlt;  // used with KktSolverKind::kLdlt
+  LdltSettings ldlt;  // used with KktSolverKind::kLdlt and kPivoted
   KktDump dump;
 };
 
@@ -120,14 +122,25 @@ struct KktCounts {
   int factorisations = 0;  // factorisations run by either solver (the LDLᵀ's refusals of a
                            // matrix with an empty row included)
   int answered = 0;        // answered "singular" without factorising (kkt.perturbed_first)
-  // kkt.solver ldlt: the matrices MUMPS factorised because disco's LDLᵀ could not solve them
+  // kkt.solver ldlt or pivoted: the matrices MUMPS factorised because disco's LDLᵀ could not solve them
   // to kkt.ldlt.residual_tolerance (or met a NaN or Inf), could not certify a wrong inertia,
   // or because Ipopt asked for more quality; counted in factorisations too.
   int fallbacks = 0;
+  // kkt.solver pivoted: Ipopt's requests for more quality answered by raising the pivot
+  // threshold (and factorising again, counted in factorisations).
+  int threshold_raises = 0;
+  // kkt.solver ldlt with kkt.ldlt.fallback pivoted: the matrices the LDLᵀ passed to the
+  // pivoting LDLᵀ instead of MUMPS (counted in factorisations too).
+  int to_pivoted = 0;
+  // The matrices Ipopt handed over for factorisation: every factorisation but a matrix's second
+  // or later (a fallback, a pass to the pivoting LDLᵀ, a factorisation with a raised threshold).
+  int matrices() const { return factorisations - fallbacks - to_pivoted - threshold_raises; }
   KktCounts& operator+=(const KktCounts& o) {
     factorisations += o.factorisations;
     answered += o.answered;
     fallbacks += o.fallbacks;
+    threshold_raises += o.threshold_raises;
+    to_pivoted += o.to_pivoted;
     return *this;
   }
 };

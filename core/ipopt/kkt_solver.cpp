@@ -10,12 +10,15 @@
 #include <IpTNLPAdapter.hpp>
 #include <IpTSymLinearSolver.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <fstream>
 #include <vector>
 
+#include "core/linalg/pivoted_ldlt.h"
 #include "core/linalg/sparse_ldlt.h"
 #include "core/util/errors.h"
 
@@ -63,14 +66,14 @@ class KktLinearSolver : public Ipopt::SparseSymLinearSolverInterface {
                                        const Index* ja) override {
     dim_ = dim;
     nonzeros_ = nonzeros;
-    if (ldlt()) {
+    if (own()) {
       values_.assign(nonzeros, 0.0);
-      ldlt_analysed_ = false;
+      ldlt_analysed_ = pivoted_analysed_ = false;
     }
     return mumps_->InitializeStructure(dim, nonzeros, ia, ja);
   }
   double* GetValuesArrayPtr() override {
-    return ldlt() ? values_.data() : mumps_->GetValuesArrayPtr();
+    return own() ? values_.data() : mumps_->GetValuesArrayPtr();
   }
 
   ESymSolverStatus MultiSolve(bool new_matrix, const Index* ia, const Index* ja, Index nrhs,
@@ -84,14 +87,33 @@ class KktLinearSolver : public Ipopt::SparseSymLinearSolverInterface {
   }
 
   Index NumberOfNegEVals() const override {
-    return on_ldlt_ ? ldlt_.negative() : mumps_->NumberOfNegEVals();
+    switch (holder_) {
+      case Holder::kLdlt:
+        return ldlt_.negative();
+      case Holder::kPivoted:
+        return pivoted_.negative();
+      case Holder::kMumps:
+        break;
+    }
+    return mumps_->NumberOfNegEVals();
   }
-  // Ipopt asks for more accuracy than a solve gave: a matrix on disco's LDLᵀ goes to MUMPS
-  // (counted), one on MUMPS raises MUMPS's pivot tolerance.
+  // Ipopt asks for more accuracy than a solve gave: a matrix on disco's LDLᵀ falls back
+  // (counted: to the pivoting LDLᵀ with kkt.ldlt.fallback pivoted, else to MUMPS); one on the
+  // pivoting LDLᵀ is factorised again with a raised threshold (u ← √u, as Ipopt raises MUMPS's
+  // pivot tolerance, up to kkt.ldlt.pivoting.threshold_max), then goes to MUMPS; one on MUMPS
+  // raises MUMPS's pivot tolerance. The next call (a solve with the same matrix) does it.
   bool IncreaseQuality() override {
-    if (!on_ldlt_) return mumps_->IncreaseQuality();
-    to_mumps_ = true;
-    return true;
+    switch (holder_) {
+      case Holder::kMumps:
+        return mumps_->IncreaseQuality();
+      case Holder::kLdlt:
+        pending_ = Pending::kFallBack;
+        return true;
+      case Holder::kPivoted:
+        pending_ = raise_threshold() ? Pending::kRefactor : Pending::kMumps;
+        return true;
+    }
+    return false;
   }
   bool ProvidesInertia() const override { return true; }
   EMatrixFormat MatrixFormat() const override { return mumps_->MatrixFormat(); }
@@ -105,17 +127,35 @@ class KktLinearSolver : public Ipopt::SparseSymLinearSolverInterface {
 
  private:
   bool ldlt() const { return options_.solver == KktSolverKind::kLdlt; }
+  bool pivoted() const { return options_.solver == KktSolverKind::kPivoted; }
+  bool own() const { return options_.solver != KktSolverKind::kMumps; }  // one of disco's
 
   ESymSolverStatus multi_solve(bool new_matrix, const Index* ia, const Index* ja, Index nrhs,
                                double* rhs, bool check_inertia, Index negative) {
     if (!new_matrix) {
-      if (to_mumps_) return on_mumps(ia, ja, nrhs, rhs, check_inertia, negative);
-      if (!on_ldlt_) return mumps_->MultiSolve(false, ia, ja, nrhs, rhs, check_inertia, negative);
+      const Pending pending = pending_;
+      pending_ = Pending::kNone;
+      switch (pending) {
+        case Pending::kMumps:
+          return on_mumps(ia, ja, nrhs, rhs, check_inertia, negative);
+        case Pending::kFallBack:
+          return fall_back(ia, ja, nrhs, rhs, check_inertia, negative);
+        case Pending::kRefactor:  // the pivoting LDLᵀ with a raised threshold
+          ++counts_.factorisations;
+          return factor_pivoted(ia, ja, nrhs, rhs, check_inertia, negative);
+        case Pending::kNone:
+          break;
+      }
+      if (holder_ == Holder::kMumps)
+        return mumps_->MultiSolve(false, ia, ja, nrhs, rhs, check_inertia, negative);
       // Another right-hand side for factors Ipopt has accepted (it refines its own solution):
       // the best the factors give, whatever its error. Ipopt aborts the solve on any answer but
       // success here; it judges the residual itself and, when it is too large, asks for more
       // quality (IncreaseQuality: MUMPS next) or perturbs the matrix.
-      for (Index j = 0; j < nrhs; ++j) ldlt_.solve(rhs + static_cast<size_t>(j) * dim_);
+      for (Index j = 0; j < nrhs; ++j) {
+        double* b = rhs + static_cast<size_t>(j) * dim_;
+        holder_ == Holder::kPivoted ? pivoted_.solve(b) : ldlt_.solve(b);
+      }
       return Ipopt::SYMSOLVER_SUCCESS;
     }
     if (estimate_pending_) {  // the least-squares multiplier estimate: not a test
@@ -127,7 +167,7 @@ class KktLinearSolver : public Ipopt::SparseSymLinearSolverInterface {
     if (answer_singular()) {
       ++tries_;
       ++counts_.answered;
-      if (!analysed_ && !ldlt()) {
+      if (!analysed_ && !own()) {
         // MUMPS analyses the structure at its first factorisation, and its column permutation
         // (ICNTL(6) 7) reads the values: it must see this matrix, the one Ipopt's own order of
         // tries first gives it. An inertia no matrix has (-1 negative eigenvalues) makes
@@ -152,15 +192,16 @@ class KktLinearSolver : public Ipopt::SparseSymLinearSolverInterface {
   // A new matrix: factorised by the configured solver, solved with it.
   ESymSolverStatus factorise(const Index* ia, const Index* ja, Index nrhs, double* rhs,
                              bool check_inertia, Index negative) {
-    to_mumps_ = false;
+    pending_ = Pending::kNone;
     if (options_.dump.every > 0 && (*options_.dumped)++ % options_.dump.every == 0)
       dump(ia, ja, rhs, check_inertia, negative);
-    if (!ldlt()) return mumps_->MultiSolve(true, ia, ja, nrhs, rhs, check_inertia, negative);
+    if (!own()) return mumps_->MultiSolve(true, ia, ja, nrhs, rhs, check_inertia, negative);
+    if (pivoted()) return factor_pivoted(ia, ja, nrhs, rhs, check_inertia, negative);
     if (!ldlt_analysed_) {
       ldlt_.analyse(dim_, nonzeros_, ia, ja, 1, dual_from());
       ldlt_analysed_ = true;
     }
-    on_ldlt_ = true;
+    holder_ = Holder::kLdlt;
     switch (ldlt_.factor(values_.data(), options_.ldlt)) {
       case SparseLdlt::Factorised::kDone:
         break;
@@ -171,37 +212,85 @@ class KktLinearSolver : public Ipopt::SparseSymLinearSolverInterface {
         return Ipopt::SYMSOLVER_SINGULAR;
       case SparseLdlt::Factorised::kNotFinite:
       case SparseLdlt::Factorised::kUnstable:  // factors too inaccurate to vouch for anything
-        return on_mumps(ia, ja, nrhs, rhs, check_inertia, negative);
+        return fall_back(ia, ja, nrhs, rhs, check_inertia, negative);
     }
     // A wrong inertia is answered only when certified (below); one that may be the
     // regularisation's goes to MUMPS. A right one is taken only once a solve has reached the
     // tolerance, which vouches for it.
     if (check_inertia && ldlt_.negative() != negative) {
-      if (!ldlt_.inertia_certified()) return on_mumps(ia, ja, nrhs, rhs, check_inertia, negative);
+      if (!ldlt_.inertia_certified()) return fall_back(ia, ja, nrhs, rhs, check_inertia, negative);
       return Ipopt::SYMSOLVER_WRONG_INERTIA;
     }
     return solve_ldlt(ia, ja, nrhs, rhs, check_inertia, negative);
   }
 
+  // The current matrix by the pivoting LDLᵀ with the current threshold: its inertia is exact
+  // (D's 1×1 and 2×2 blocks), a singular one is answered so (Ipopt then perturbs).
+  ESymSolverStatus factor_pivoted(const Index* ia, const Index* ja, Index nrhs, double* rhs,
+                                  bool check_inertia, Index negative) {
+    if (!pivoted_analysed_) {
+      pivoted_.analyse(dim_, nonzeros_, ia, ja, 1, dual_from());
+      pivoted_analysed_ = true;
+      threshold_ = options_.ldlt.pivot_threshold;
+    }
+    holder_ = Holder::kPivoted;
+    switch (pivoted_.factor(values_.data(), options_.ldlt, threshold_)) {
+      case PivotedLdlt::Factorised::kDone:
+        break;
+      case PivotedLdlt::Factorised::kEmptyRow:
+      case PivotedLdlt::Factorised::kSingular:
+        return Ipopt::SYMSOLVER_SINGULAR;
+      case PivotedLdlt::Factorised::kNotFinite:
+        return on_mumps(ia, ja, nrhs, rhs, check_inertia, negative);
+    }
+    if (check_inertia && pivoted_.negative() != negative) return Ipopt::SYMSOLVER_WRONG_INERTIA;
+    return solve_ldlt(ia, ja, nrhs, rhs, check_inertia, negative);
+  }
+
+  // u ← √u up to kkt.ldlt.pivoting.threshold_max (counted); false when already there.
+  bool raise_threshold() {
+    if (threshold_ >= options_.ldlt.pivot_threshold_max) return false;
+    threshold_ = std::min(options_.ldlt.pivot_threshold_max, std::sqrt(threshold_));
+    ++counts_.threshold_raises;
+    return true;
+  }
+
   // Solves with disco's factors; any right-hand side they cannot solve to the tolerance sends
-  // the matrix to MUMPS.
+  // the matrix on (the LDLᵀ's: fall_back(); the pivoting LDLᵀ first factorises it again with a
+  // raised threshold, while it can, then sends it to MUMPS).
   ESymSolverStatus solve_ldlt(const Index* ia, const Index* ja, Index nrhs, double* rhs,
                               bool check_inertia, Index negative) {
     original_.assign(rhs, rhs + static_cast<size_t>(dim_) * nrhs);
     for (Index j = 0; j < nrhs; ++j) {
-      if (ldlt_.solve(rhs + static_cast<size_t>(j) * dim_) > options_.ldlt.residual_tolerance) {
+      double* b = rhs + static_cast<size_t>(j) * dim_;
+      const bool on_pivoted = holder_ == Holder::kPivoted;
+      if ((on_pivoted ? pivoted_.solve(b) : ldlt_.solve(b)) > options_.ldlt.residual_tolerance) {
         std::copy(original_.begin(), original_.end(), rhs);
+        if (!on_pivoted) return fall_back(ia, ja, nrhs, rhs, check_inertia, negative);
+        if (raise_threshold()) {
+          ++counts_.factorisations;
+          return factor_pivoted(ia, ja, nrhs, rhs, check_inertia, negative);
+        }
         return on_mumps(ia, ja, nrhs, rhs, check_inertia, negative);
       }
     }
     return Ipopt::SYMSOLVER_SUCCESS;
   }
 
-  // The current matrix to MUMPS (kkt.solver ldlt: counted as a fallback).
+  // A matrix the LDLᵀ cannot serve: to the pivoting LDLᵀ (kkt.ldlt.fallback pivoted; counted
+  // in KktCounts::to_pivoted), else to MUMPS.
+  ESymSolverStatus fall_back(const Index* ia, const Index* ja, Index nrhs, double* rhs,
+                             bool check_inertia, Index negative) {
+    if (!options_.ldlt.fallback_pivoted) return on_mumps(ia, ja, nrhs, rhs, check_inertia, negative);
+    ++counts_.to_pivoted;
+    ++counts_.factorisations;
+    return factor_pivoted(ia, ja, nrhs, rhs, check_inertia, negative);
+  }
+
+  // The current matrix to MUMPS (kkt.solver ldlt or pivoted: counted as a fallback).
   ESymSolverStatus on_mumps(const Index* ia, const Index* ja, Index nrhs, double* rhs,
                             bool check_inertia, Index negative) {
-    to_mumps_ = false;
-    on_ldlt_ = false;
+    holder_ = Holder::kMumps;
     ++counts_.fallbacks;
     ++counts_.factorisations;
     std::copy(values_.begin(), values_.end(), mumps_->GetValuesArrayPtr());
@@ -242,8 +331,16 @@ class KktLinearSolver : public Ipopt::SparseSymLinearSolverInterface {
   // kkt.solver ldlt
   SparseLdlt ldlt_;
   bool ldlt_analysed_ = false;
-  bool on_ldlt_ = false;   // the current matrix is factorised by ldlt_ (else by MUMPS)
-  bool to_mumps_ = false;  // IncreaseQuality asked: the current matrix goes to MUMPS
+  // Which solver holds the current matrix's factors.
+  enum class Holder { kLdlt, kPivoted, kMumps };
+  Holder holder_ = Holder::kMumps;
+  // What IncreaseQuality asked to be done with the current matrix at the next call.
+  enum class Pending { kNone, kFallBack, kRefactor, kMumps };
+  Pending pending_ = Pending::kNone;
+  // kkt.solver pivoted
+  PivotedLdlt pivoted_;
+  bool pivoted_analysed_ = false;
+  double threshold_ = 0.0;  // its pivot threshold in this solve (raised by IncreaseQuality)
   std::vector<double> values_, original_;
 };
 

@@ -22,8 +22,8 @@
 //     with the factors (SparseLdlt::smallest_eigenvalue), is above kkt.ldlt.certificate.margin
 //     × ‖R‖₂. By Weyl's inequality every eigenvalue of S A S is then within ‖R‖₂ of one of M
 //     with the same sign, and S A S has A's inertia (Sylvester). Otherwise an eigenvalue of A
-//     may lie within the regularisation of zero, its sign decided by R: the matrix goes to
-//     MUMPS (counted). On the bench_kkt corpus this is what made the inertia differ from
+//     may lie within the regularisation of zero, its sign decided by R: the matrix falls back
+//     (below; counted). On the bench_kkt corpus this is what made the inertia differ from
 //     MUMPS's on the two matrices of B3_s1 (A's eigenvalue 1e-11 against δ = 1e-8).
 //   - A matrix with a row without a nonzero (a constraint whose variables are all fixed, with
 //     δc = 0, as in a polish solve) is answered "singular", as MUMPS finds it (a zero pivot):
@@ -37,10 +37,23 @@
 //   - A matrix whose factors have grown above kkt.ldlt.growth_limit (a tiny pivot kept, L
 //     huge: without pivoting, what can make the inertia wrong; sparse_ldlt.h kUnstable), one
 //     it cannot solve to the tolerance (or with a NaN or Inf in its values or pivots), and one
-//     whose solves Ipopt wants more accurate (IncreaseQuality), goes to MUMPS:
-//     factorised again there, solved there until the next matrix, counted in
-//     KktCounts::fallbacks (and reported in the solve summary, runs.jsonl and solution.json).
-//     MUMPS's own IncreaseQuality (a larger pivot tolerance) then applies to that matrix.
+//     whose solves Ipopt wants more accurate (IncreaseQuality), falls back: factorised again
+//     by the solver kkt.ldlt.fallback names, solved there until the next matrix. mumps: counted
+//     in KktCounts::fallbacks (and reported in the solve summary, runs.jsonl and
+//     solution.json); MUMPS's own IncreaseQuality (a larger pivot tolerance) then applies to
+//     that matrix. pivoted: the pivoting LDLᵀ below, counted in KktCounts::to_pivoted, with
+//     MUMPS behind it as below (the same certificate answers for the LDLᵀ's wrong inertias).
+//
+// kkt.solver pivoted: disco's multifrontal LDLᵀ with threshold 1×1/2×2 pivoting
+// (core/linalg/pivoted_ldlt.h; analysed once per solve, the constraint block paired with
+// primal rows for its ordering). No regularisation: its inertia is D's, exact, so a wrong one
+// is answered "wrong inertia" at once, and a matrix with a singular remaining block (or an
+// empty row) "singular". A right one is solved and refined to kkt.ldlt.residual_tolerance.
+// When a solve does not reach it, or Ipopt asks for more quality, the pivot threshold u is
+// raised (u ← √u, as Ipopt raises MUMPS's pivot tolerance; up to
+// kkt.ldlt.pivoting.threshold_max; counted in KktCounts::threshold_raises; it stays raised for
+// the rest of the solve) and the matrix factorised again; at threshold_max, it goes to MUMPS
+// (counted in KktCounts::fallbacks).
 //
 // The degeneracy test:
 //

@@ -1,13 +1,9 @@
 // disco — sparse symmetric indefinite LDLᵀ (core/linalg/sparse_ldlt.h says what and why).
 #include "core/linalg/sparse_ldlt.h"
 
-#include <Eigen/Core>
-#include <Eigen/OrderingMethods>
-#include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
 
 #include "core/util/check.h"
 
@@ -23,63 +19,18 @@ void SparseLdlt::analyse(int n, int nnz, const int* rows, const int* cols, int b
                          int dual_from) {
   DISCO_CHECK(n >= 0 && nnz >= 0 && dual_from >= 0 && dual_from <= n, "a matrix shape");
   n_ = n;
-  dual_from_ = dual_from;
-
-  // The ordering: AMD on the symmetric pattern.
-  std::vector<Eigen::Triplet<double, int>> pattern;
-  pattern.reserve(2 * static_cast<size_t>(nnz) + n);
-  for (int t = 0; t < nnz; ++t) {
-    const int i = rows[t] - base, j = cols[t] - base;
-    DISCO_CHECK(i >= 0 && i < n && j >= 0 && j < n, "a triplet inside the matrix");
-    pattern.emplace_back(i, j, 1.0);
-    pattern.emplace_back(j, i, 1.0);
-  }
-  for (int i = 0; i < n; ++i) pattern.emplace_back(i, i, 1.0);
-  Eigen::SparseMatrix<double, Eigen::ColMajor, int> full(n, n);
-  full.setFromTriplets(pattern.begin(), pattern.end());
-  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> amd;
-  Eigen::AMDOrdering<int>()(full, amd);
-  order_.assign(amd.indices().data(), amd.indices().data() + n);
-  position_.assign(n, 0);
-  for (int k = 0; k < n; ++k) position_[order_[k]] = k;
+  a_.assign(n, nnz, rows, cols, base, amd_order(n, nnz, rows, cols, base));
   dual_.assign(n, 0);
-  for (int k = 0; k < n; ++k) dual_[k] = order_[k] >= dual_from ? 1 : 0;
-
-  // A's upper triangle, permuted, by columns: one slot per distinct entry plus every diagonal.
-  std::vector<std::pair<int, int>> entries;  // (column, row), row <= column
-  entries.reserve(static_cast<size_t>(nnz) + n);
-  for (int t = 0; t < nnz; ++t) {
-    const int a = position_[rows[t] - base], b = position_[cols[t] - base];
-    entries.emplace_back(std::max(a, b), std::min(a, b));
-  }
-  for (int k = 0; k < n; ++k) entries.emplace_back(k, k);
-  std::vector<int> by_entry(entries.size());
-  std::iota(by_entry.begin(), by_entry.end(), 0);
-  std::stable_sort(by_entry.begin(), by_entry.end(),
-                   [&](int x, int y) { return entries[x] < entries[y]; });
-  ap_.assign(n + 1, 0);
-  ai_.clear();
-  slot_.assign(nnz, 0);
-  diagonal_.assign(n, 0);
-  for (size_t q = 0; q < by_entry.size(); ++q) {
-    const int e = by_entry[q];
-    if (q == 0 || entries[e] != entries[by_entry[q - 1]]) {
-      ai_.push_back(entries[e].second);
-      ++ap_[entries[e].first + 1];
-    }
-    const int s = static_cast<int>(ai_.size()) - 1;
-    if (e < nnz) slot_[e] = s;
-    if (entries[e].first == entries[e].second) diagonal_[entries[e].first] = s;
-  }
-  for (int k = 0; k < n; ++k) ap_[k + 1] += ap_[k];
-  ax_.assign(ai_.size(), 0.0);
+  for (int k = 0; k < n; ++k) dual_[k] = a_.order()[k] >= dual_from ? 1 : 0;
+  const std::vector<int>& ap = a_.ap();
+  const std::vector<int>& ai = a_.ai();
 
   // Elimination tree and column counts of L (the up-looking elimination's reach of each row).
   std::vector<int> parent(n, -1), count(n, 0), flag(n, -1);
   for (int k = 0; k < n; ++k) {
     flag[k] = k;
-    for (int p = ap_[k]; p < ap_[k + 1]; ++p) {
-      for (int i = ai_[p]; flag[i] != k; i = parent[i]) {
+    for (int p = ap[k]; p < ap[k + 1]; ++p) {
+      for (int i = ai[p]; flag[i] != k; i = parent[i]) {
         if (parent[i] == -1) parent[i] = k;
         ++count[i];
         flag[i] = k;
@@ -105,9 +56,9 @@ void SparseLdlt::analyse(int n, int nnz, const int* rows, const int* cols, int b
   for (int k = 0; k < n; ++k) {
     flag[k] = k;
     int top = n;
-    for (int p = ap_[k]; p < ap_[k + 1]; ++p) {
+    for (int p = ap[k]; p < ap[k + 1]; ++p) {
       int length = 0;
-      for (int i = ai_[p]; flag[i] != k; i = parent[i]) {
+      for (int i = ai[p]; flag[i] != k; i = parent[i]) {
         path[length++] = i;
         flag[i] = k;
       }
@@ -125,75 +76,32 @@ void SparseLdlt::analyse(int n, int nnz, const int* rows, const int* cols, int b
   }
   DISCO_CHECK(out == entries_l, "the row patterns cover L");
 
-  s_.assign(n, 1.0);
-  row_norm_.assign(n, 0.0);
   d_.assign(n, 0.0);
   column_max_.assign(n, 1.0);
   dinv_.assign(n, 0.0);
   y_.assign(n, 0.0);
   w1_.assign(n, 0.0);
-  w2_.assign(n, 0.0);
-  w3_.assign(n, 0.0);
   negative_ = perturbed_ = regularised_ = 0;
-}
-
-void SparseLdlt::scale() {
-  std::fill(s_.begin(), s_.end(), 1.0);
-  std::vector<double>& largest = w1_;
-  for (int sweep = 0; sweep < settings_.scaling_sweeps; ++sweep) {
-    for (int k = 0; k < n_; ++k) {
-      // Column k holds rows i <= k, so no earlier column reached largest[k]: its own maximum is
-      // kept in a register and stored once, before any later column reads it (a max is exact:
-      // the same bits as updating largest[k] entry by entry; no clearing between sweeps).
-      const double sk = s_[k];
-      double column = 0.0;
-      for (int p = ap_[k]; p < ap_[k + 1]; ++p) {
-        const int i = ai_[p];
-        const double v = std::abs(ax_[p]) * s_[i] * sk;
-        if (i != k) largest[i] = std::max(largest[i], v);
-        column = std::max(column, v);
-      }
-      largest[k] = column;
-    }
-    // s_k ← s_k / √largest_k where largest_k > 0 (a row whose entries underflowed keeps s_k:
-    // / √1), in Eigen's packets: IEEE square roots and divisions, the same bits as one at a time.
-    for (double& l : largest)
-      if (!(l > 0.0)) l = 1.0;
-    Eigen::Map<Eigen::ArrayXd>(s_.data(), n_) /=
-        Eigen::Map<const Eigen::ArrayXd>(largest.data(), n_).sqrt();
-  }
 }
 
 SparseLdlt::Factorised SparseLdlt::factor(const double* values, const LdltSettings& settings) {
   settings_ = settings;
-  std::fill(ax_.begin(), ax_.end(), 0.0);
-  const int nnz = static_cast<int>(slot_.size());
-  for (int t = 0; t < nnz; ++t) ax_[slot_[t]] += values[t];
-  std::fill(row_norm_.begin(), row_norm_.end(), 0.0);
-  for (int k = 0; k < n_; ++k) {
-    // As in scale(): row k's sum over column k in a register, added in the same order.
-    double column = 0.0;
-    for (int p = ap_[k]; p < ap_[k + 1]; ++p) {
-      const double a = std::abs(ax_[p]);
-      if (!std::isfinite(a)) return Factorised::kNotFinite;
-      if (ai_[p] != k) row_norm_[ai_[p]] += a;
-      column += a;
-    }
-    row_norm_[k] = column;
-  }
-  norm_ = n_ > 0 ? *std::max_element(row_norm_.begin(), row_norm_.end()) : 0.0;
-  empty_rows_ = static_cast<int>(std::count(row_norm_.begin(), row_norm_.end(), 0.0));
-  if (empty_rows_ > 0) return Factorised::kEmptyRow;
-  scale();
+  const PermutedSymmetric::Loaded loaded = a_.load_scaled(values, settings.scaling_sweeps);
+  if (loaded == PermutedSymmetric::Loaded::kNotFinite) return Factorised::kNotFinite;
+  if (loaded == PermutedSymmetric::Loaded::kEmptyRow) return Factorised::kEmptyRow;
+  const std::vector<int>& ap = a_.ap();
+  const std::vector<int>& ai = a_.ai();
+  const std::vector<double>& ax = a_.ax();
+  const std::vector<double>& s = a_.s();
 
   const double delta = settings.regularisation;
   negative_ = perturbed_ = regularised_ = 0;
   regularisation_norm_ = 0.0;
   std::fill(column_max_.begin(), column_max_.end(), 1.0);
   for (int k = 0; k < n_; ++k) {
-    const double sk = s_[k];
+    const double sk = s[k];
     // Column k of S A S (rows <= k) into y_.
-    for (int p = ap_[k]; p < ap_[k + 1]; ++p) y_[ai_[p]] += ax_[p] * s_[ai_[p]] * sk;
+    for (int p = ap[k]; p < ap[k + 1]; ++p) y_[ai[p]] += ax[p] * s[ai[p]] * sk;
     double d = y_[k];
     y_[k] = 0.0;
     const double sign = dual_[k] ? -1.0 : 1.0;
@@ -233,12 +141,6 @@ SparseLdlt::Factorised SparseLdlt::factor(const double* values, const LdltSettin
   for (int k = 0; k < n_; ++k)
     growth_ = std::max(growth_, std::abs(d_[k]) * column_max_[k] * column_max_[k]);
   return growth_ > settings.growth_limit ? Factorised::kUnstable : Factorised::kDone;
-}
-
-void SparseLdlt::apply_inverse(const double* b, double* x) {
-  for (int k = 0; k < n_; ++k) x[k] = s_[k] * b[k];
-  apply_factors_inverse(x);
-  for (int k = 0; k < n_; ++k) x[k] *= s_[k];
 }
 
 void SparseLdlt::apply_factors_inverse(double* x) const {
@@ -292,55 +194,10 @@ double SparseLdlt::smallest_eigenvalue(int iterations) {
   return largest > 0.0 ? 1.0 / largest : std::numeric_limits<double>::infinity();
 }
 
-void SparseLdlt::residual(const double* b, const double* x, double* r) const {
-  std::copy(b, b + n_, r);
-  for (int k = 0; k < n_; ++k) {
-    double rk = 0.0;
-    const double xk = x[k];
-    for (int p = ap_[k]; p < ap_[k + 1]; ++p) {
-      const int i = ai_[p];
-      r[i] -= ax_[p] * xk;
-      if (i != k) rk -= ax_[p] * x[i];
-    }
-    r[k] += rk;
-  }
-}
-
 double SparseLdlt::solve(double* b) {
-  double* rhs = w1_.data();  // b, permuted
-  double* x = w2_.data();
-  double* r = w3_.data();
-  for (int k = 0; k < n_; ++k) rhs[k] = b[order_[k]];
-  double norm_b = 0.0;
-  for (int k = 0; k < n_; ++k) norm_b = std::max(norm_b, std::abs(rhs[k]));
-  auto backward_error = [&]() {
-    residual(rhs, x, r);
-    double norm_r = 0.0, norm_x = 0.0;
-    bool finite = true;  // (std::max would pass over a NaN)
-    for (int k = 0; k < n_; ++k) {
-      finite = finite && std::isfinite(r[k]) && std::isfinite(x[k]);
-      norm_r = std::max(norm_r, std::abs(r[k]));
-      norm_x = std::max(norm_x, std::abs(x[k]));
-    }
-    const double scale = norm_ * norm_x + norm_b;
-    if (!finite || !std::isfinite(scale)) return std::numeric_limits<double>::infinity();
-    return scale > 0.0 ? norm_r / scale : 0.0;
-  };
-  apply_inverse(rhs, x);
-  double error = backward_error();
-  refinement_steps_used_ = 0;
-  while (error > settings_.residual_tolerance &&
-         refinement_steps_used_ < settings_.refinement_steps) {
-    apply_inverse(r, y_.data());
-    for (int k = 0; k < n_; ++k) x[k] += y_[k];
-    std::fill(y_.begin(), y_.end(), 0.0);
-    ++refinement_steps_used_;
-    const double before = error;
-    error = backward_error();
-    if (!(error < 0.5 * before)) break;  // stalled: more steps would not reach it
-  }
-  for (int k = 0; k < n_; ++k) b[order_[k]] = x[k];
-  return error;
+  return a_.refined_solve(
+      b, [this](double* x) { apply_factors_inverse(x); }, settings_.residual_tolerance,
+      settings_.refinement_steps, &refinement_steps_used_);
 }
 
 }  // namespace disco

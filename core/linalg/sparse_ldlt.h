@@ -44,6 +44,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/linalg/permuted_symmetric.h"
+
 namespace disco {
 
 // The kkt.ldlt settings of configs/disco.yaml.
@@ -58,6 +60,15 @@ struct LdltSettings {
   // be for the signs of D to count as A's inertia.
   int certificate_iterations = 0;
   double certificate_margin = 0.0;
+  // kkt.solver pivoted (pivoted_ldlt.h): the threshold u of its 1×1 and 2×2 pivots, the largest
+  // u Ipopt's requests for more accuracy may raise it to, and the magnitude below which a pivot
+  // of the scaled matrix counts as zero.
+  double pivot_threshold = 0.0;
+  // kkt.solver ldlt: a matrix this LDLᵀ cannot serve goes to the pivoting LDLᵀ (true) or to
+  // MUMPS (false); kkt.ldlt.fallback.
+  bool fallback_pivoted = false;
+  double pivot_threshold_max = 0.0;
+  double zero_pivot = 0.0;
 };
 
 class SparseLdlt {
@@ -87,7 +98,7 @@ class SparseLdlt {
   int negative() const { return negative_; }    // negative pivots of the last factorisation
   int perturbed() const { return perturbed_; }  // pivots replaced by ±δ in it
   int regularised() const { return regularised_; }  // diagonal entries set to ±δ in it
-  int empty_rows() const { return empty_rows_; }  // rows of A without a nonzero (kEmptyRow)
+  int empty_rows() const { return a_.empty_rows(); }  // rows of A without a nonzero (kEmptyRow)
   int64_t factor_entries() const { return static_cast<int64_t>(li_.size()); }  // nnz(L), no diagonal
   // Element growth of the last factorisation: max_j |D(j)| · max(1, max_i |L(i, j)|)², a lower
   // bound on the largest entry of |L| |D| |Lᵀ| (the scaled matrix's entries are at most 1).
@@ -112,31 +123,18 @@ class SparseLdlt {
   int last_refinement_steps() const { return refinement_steps_used_; }
 
  private:
-  void scale();                                  // s_ from ax_
-  void apply_inverse(const double* b, double* x);  // x = S (L D Lᵀ)⁻¹ S b, permuted space
-  void apply_factors_inverse(double* x) const;     // x ← (L D Lᵀ)⁻¹ x, permuted space
-  void residual(const double* b, const double* x, double* r) const;  // r = b − A x
+  void apply_factors_inverse(double* x) const;  // x ← (L D Lᵀ)⁻¹ x, permuted space
 
   int n_ = 0;
-  int dual_from_ = 0;  // in original numbering
-  std::vector<int> order_;     // order_[k]: the original row eliminated k-th
-  std::vector<int> position_;  // position_[i]: when original row i is eliminated
-  // A's upper triangle in the permuted numbering, by columns (merged repeats, every diagonal).
-  std::vector<int> ap_, ai_;
-  std::vector<int> slot_;       // slot_[t]: where triplet t adds into ax_
-  std::vector<int> diagonal_;   // diagonal_[k]: the slot of A(k, k)
-  std::vector<char> dual_;      // dual_[k]: permuted row k is in the constraint block
-  std::vector<double> ax_;      // A's values (unscaled, unregularised)
-  std::vector<double> s_;       // the scaling, permuted numbering
-  std::vector<double> row_norm_;  // |A| row sums, for ‖A‖∞
-  double norm_ = 0.0;             // ‖A‖∞
+  PermutedSymmetric a_;  // A in the elimination order, its scaling, the refined solve
+  std::vector<char> dual_;  // dual_[k]: permuted row k is in the constraint block
   // L by columns: lp_, li_, lx_; and by rows, in the topological order the elimination of row k
   // visits them: rp_, ri_ (the columns), rslot_ (where L(k, ri) lies in lx_).
   std::vector<int> lp_, li_, rp_, ri_, rslot_;
   std::vector<double> lx_, d_, dinv_;
   std::vector<double> column_max_;  // column_max_[j]: max(1, max_i |L(i, j)|)
-  std::vector<double> y_, w1_, w2_, w3_;  // work vectors, length n
-  int negative_ = 0, perturbed_ = 0, regularised_ = 0, empty_rows_ = 0, refinement_steps_used_ = 0;
+  std::vector<double> y_, w1_;  // work vectors, length n
+  int negative_ = 0, perturbed_ = 0, regularised_ = 0, refinement_steps_used_ = 0;
   double flops_ = 0.0;
   double growth_ = 0.0;
   double regularisation_norm_ = 0.0;

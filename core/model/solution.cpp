@@ -81,7 +81,11 @@ json solution_json(const RobotProblem& problem, const Vector& z, const SolutionI
       {"wall_s", info.wall_s},
       {"nlp_solves", info.nlp_solves},
       {"iterations", info.iterations},
-      {"kkt", {{"factorisations", info.kkt_factorisations}, {"fallbacks", info.kkt_fallbacks}}}};
+      {"kkt",
+       {{"factorisations", info.kkt_factorisations},
+        {"fallbacks", info.kkt_fallbacks},
+        {"threshold_raises", info.kkt_threshold_raises},
+        {"to_pivoted", info.kkt_to_pivoted}}}};
 
   const State unit{u.length, u.length, 1.0, u.velocity(), u.velocity(), 1.0 / u.time};
   auto value = [&](const Affine& a) { return a.value(z); };

@@ -6,7 +6,8 @@
 //   time (N_t + 1 values: t_k = k h, 0 to T_f; null without a solution), g, lower_bound (or null),
 //   model {variables, constraints, complementarity_pairs},
 //   certificate {max_violation, max_complementarity, complementarity_product, units},
-//   timing {wall_s, nlp_solves, iterations, kkt {factorisations, fallbacks}},
+//   timing {wall_s, nlp_solves, iterations, kkt {factorisations, fallbacks, threshold_raises,
+//   to_pivoted}},
 //   robots[]: name, kind ("robot", or "object": a passive disk, F_max = 0, force_dims = 0,
 //     Fx = Fy = 0; objects follow the robots), radius, mass, inertia, mu, damping, F_max,
 //     force_dims, K,
@@ -61,9 +62,10 @@ struct SolutionInfo {
   Certificate certificate;
   double wall_s = 0.0;
   int nlp_solves = 0, iterations = 0;
-  // KKT factorisations of its Ipopt solves, and how many of them went to MUMPS because
-  // disco's LDLᵀ could not serve the matrix (core/ipopt/kkt_solver.h).
-  int kkt_factorisations = 0, kkt_fallbacks = 0;
+  // KKT factorisations of its Ipopt solves, how many of them went to MUMPS because
+  // disco's LDLᵀ could not serve the matrix, and how often the pivoting LDLᵀ raised its
+  // threshold, and how many matrices the LDLᵀ passed to the pivoting one (core/ipopt/kkt_solver.h).
+  int kkt_factorisations = 0, kkt_fallbacks = 0, kkt_threshold_raises = 0, kkt_to_pivoted = 0;
 };
 
 // The trajectory of point z (model units) of `problem`, with `info`; z may be

@@ -1,0 +1,158 @@
+// disco — a symmetric matrix in a fixed elimination order (core/linalg/permuted_symmetric.h).
+#include "core/linalg/permuted_symmetric.h"
+
+#include <Eigen/Core>
+#include <Eigen/OrderingMethods>
+#include <Eigen/SparseCore>
+#include <limits>
+#include <numeric>
+#include <utility>
+
+#include "core/util/check.h"
+
+namespace disco {
+
+std::vector<int> amd_order(int n, int nnz, const int* rows, const int* cols, int base) {
+  DISCO_CHECK(n >= 0 && nnz >= 0, "a matrix shape");
+  std::vector<Eigen::Triplet<double, int>> pattern;
+  pattern.reserve(2 * static_cast<size_t>(nnz) + n);
+  for (int t = 0; t < nnz; ++t) {
+    const int i = rows[t] - base, j = cols[t] - base;
+    DISCO_CHECK(i >= 0 && i < n && j >= 0 && j < n, "a triplet inside the matrix");
+    pattern.emplace_back(i, j, 1.0);
+    pattern.emplace_back(j, i, 1.0);
+  }
+  for (int i = 0; i < n; ++i) pattern.emplace_back(i, i, 1.0);
+  Eigen::SparseMatrix<double, Eigen::ColMajor, int> full(n, n);
+  full.setFromTriplets(pattern.begin(), pattern.end());
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> amd;
+  Eigen::AMDOrdering<int>()(full, amd);
+  return std::vector<int>(amd.indices().data(), amd.indices().data() + n);
+}
+
+void PermutedSymmetric::assign(int n, int nnz, const int* rows, const int* cols, int base,
+                               const std::vector<int>& order) {
+  DISCO_CHECK(n >= 0 && nnz >= 0 && static_cast<int>(order.size()) == n, "a matrix shape");
+  n_ = n;
+  order_ = order;
+  position_.assign(n, -1);
+  for (int k = 0; k < n; ++k) {
+    DISCO_CHECK(order[k] >= 0 && order[k] < n && position_[order[k]] < 0, "a permutation");
+    position_[order[k]] = k;
+  }
+  // One slot per distinct (column, row ≤ column) plus every diagonal.
+  std::vector<std::pair<int, int>> entries;
+  entries.reserve(static_cast<size_t>(nnz) + n);
+  for (int t = 0; t < nnz; ++t) {
+    const int i = rows[t] - base, j = cols[t] - base;
+    DISCO_CHECK(i >= 0 && i < n && j >= 0 && j < n, "a triplet inside the matrix");
+    const int a = position_[i], b = position_[j];
+    entries.emplace_back(std::max(a, b), std::min(a, b));
+  }
+  for (int k = 0; k < n; ++k) entries.emplace_back(k, k);
+  std::vector<int> by_entry(entries.size());
+  std::iota(by_entry.begin(), by_entry.end(), 0);
+  std::stable_sort(by_entry.begin(), by_entry.end(),
+                   [&](int x, int y) { return entries[x] < entries[y]; });
+  ap_.assign(n + 1, 0);
+  ai_.clear();
+  slot_.assign(nnz, 0);
+  for (size_t q = 0; q < by_entry.size(); ++q) {
+    const int e = by_entry[q];
+    if (q == 0 || entries[e] != entries[by_entry[q - 1]]) {
+      ai_.push_back(entries[e].second);
+      ++ap_[entries[e].first + 1];
+    }
+    if (e < nnz) slot_[e] = static_cast<int>(ai_.size()) - 1;
+  }
+  for (int k = 0; k < n; ++k) ap_[k + 1] += ap_[k];
+  ax_.assign(ai_.size(), 0.0);
+  s_.assign(n, 1.0);
+  row_norm_.assign(n, 0.0);
+  rhs_.assign(n, 0.0);
+  x_.assign(n, 0.0);
+  r_.assign(n, 0.0);
+  y_.assign(n, 0.0);
+  norm_ = 0.0;
+  empty_rows_ = 0;
+}
+
+PermutedSymmetric::Loaded PermutedSymmetric::load(const double* values) {
+  std::fill(ax_.begin(), ax_.end(), 0.0);
+  const int nnz = static_cast<int>(slot_.size());
+  for (int t = 0; t < nnz; ++t) ax_[slot_[t]] += values[t];
+  std::fill(row_norm_.begin(), row_norm_.end(), 0.0);
+  for (int k = 0; k < n_; ++k) {
+    // Row k's sum over column k in a register (column k holds rows <= k: no earlier column
+    // reached row_norm_[k]); the other rows' sums in the same order as entry by entry.
+    double column = 0.0;
+    for (int p = ap_[k]; p < ap_[k + 1]; ++p) {
+      const double a = std::abs(ax_[p]);
+      if (!std::isfinite(a)) return Loaded::kNotFinite;
+      if (ai_[p] != k) row_norm_[ai_[p]] += a;
+      column += a;
+    }
+    row_norm_[k] = column;
+  }
+  norm_ = n_ > 0 ? *std::max_element(row_norm_.begin(), row_norm_.end()) : 0.0;
+  empty_rows_ = static_cast<int>(std::count(row_norm_.begin(), row_norm_.end(), 0.0));
+  return empty_rows_ > 0 ? Loaded::kEmptyRow : Loaded::kDone;
+}
+
+void PermutedSymmetric::scale(int sweeps) {
+  std::fill(s_.begin(), s_.end(), 1.0);
+  std::vector<double>& largest = y_;
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
+    for (int k = 0; k < n_; ++k) {
+      // Column k holds rows i <= k, so no earlier column reached largest[k]: its own maximum is
+      // kept in a register and stored once, before any later column reads it (a max is exact:
+      // the same bits as updating largest[k] entry by entry; no clearing between sweeps).
+      const double sk = s_[k];
+      double column = 0.0;
+      for (int p = ap_[k]; p < ap_[k + 1]; ++p) {
+        const int i = ai_[p];
+        const double v = std::abs(ax_[p]) * s_[i] * sk;
+        if (i != k) largest[i] = std::max(largest[i], v);
+        column = std::max(column, v);
+      }
+      largest[k] = column;
+    }
+    // s_k ← s_k / √largest_k where largest_k > 0 (a row whose entries underflowed keeps s_k:
+    // / √1), in Eigen's packets: IEEE square roots and divisions, the same bits as one at a time.
+    for (double& l : largest)
+      if (!(l > 0.0)) l = 1.0;
+    Eigen::Map<Eigen::ArrayXd>(s_.data(), n_) /=
+        Eigen::Map<const Eigen::ArrayXd>(largest.data(), n_).sqrt();
+  }
+}
+
+void PermutedSymmetric::residual(const double* b, const double* x, double* r) const {
+  std::copy(b, b + n_, r);
+  for (int k = 0; k < n_; ++k) {
+    double rk = 0.0;
+    const double xk = x[k];
+    for (int p = ap_[k]; p < ap_[k + 1]; ++p) {
+      const int i = ai_[p];
+      r[i] -= ax_[p] * xk;
+      if (i != k) rk -= ax_[p] * x[i];
+    }
+    r[k] += rk;
+  }
+}
+
+double PermutedSymmetric::backward_error(const double* b, const double* x, double norm_b,
+                                         double* r) const {
+  residual(b, x, r);
+  double norm_r = 0.0, norm_x = 0.0;
+  bool finite = true;  // (std::max would pass over a NaN)
+  for (int k = 0; k < n_; ++k) {
+    finite = finite && std::isfinite(r[k]) && std::isfinite(x[k]);
+    norm_r = std::max(norm_r, std::abs(r[k]));
+    norm_x = std::max(norm_x, std::abs(x[k]));
+  }
+  const double scale = norm_ * norm_x + norm_b;
+  if (!finite || !std::isfinite(scale)) return std::numeric_limits<double>::infinity();
+  return scale > 0.0 ? norm_r / scale : 0.0;
+}
+
+}  // namespace disco
