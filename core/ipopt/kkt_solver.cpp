@@ -126,7 +126,6 @@ class KktLinearSolver : public Ipopt::SparseSymLinearSolverInterface {
   }
 
  private:
-  bool ldlt() const { return options_.solver == KktSolverKind::kLdlt; }
   bool pivoted() const { return options_.solver == KktSolverKind::kPivoted; }
   bool own() const { return options_.solver != KktSolverKind::kMumps; }  // one of disco's
 
@@ -151,11 +150,8 @@ class KktLinearSolver : public Ipopt::SparseSymLinearSolverInterface {
       // Another right-hand side for factors Ipopt has accepted (it refines its own solution):
       // the best the factors give, whatever its error. Ipopt aborts the solve on any answer but
       // success here; it judges the residual itself and, when it is too large, asks for more
-      // quality (IncreaseQuality: MUMPS next) or perturbs the matrix.
-      for (Index j = 0; j < nrhs; ++j) {
-        double* b = rhs + static_cast<size_t>(j) * dim_;
-        holder_ == Holder::kPivoted ? pivoted_.solve(b) : ldlt_.solve(b);
-      }
+      // quality (IncreaseQuality: the fallback next) or perturbs the matrix.
+      for (Index j = 0; j < nrhs; ++j) solve_own(rhs + static_cast<size_t>(j) * dim_);
       return Ipopt::SYMSOLVER_SUCCESS;
     }
     if (estimate_pending_) {  // the least-squares multiplier estimate: not a test
@@ -247,6 +243,12 @@ class KktLinearSolver : public Ipopt::SparseSymLinearSolverInterface {
     return solve_ldlt(ia, ja, nrhs, rhs, check_inertia, negative);
   }
 
+  // Solves with the factors of whichever of disco's solvers holds the current matrix (refined);
+  // returns the backward error reached.
+  double solve_own(double* b) {
+    return holder_ == Holder::kPivoted ? pivoted_.solve(b) : ldlt_.solve(b);
+  }
+
   // u ← √u up to kkt.ldlt.pivoting.threshold_max (counted); false when already there.
   bool raise_threshold() {
     if (threshold_ >= options_.ldlt.pivot_threshold_max) return false;
@@ -263,10 +265,9 @@ class KktLinearSolver : public Ipopt::SparseSymLinearSolverInterface {
     original_.assign(rhs, rhs + static_cast<size_t>(dim_) * nrhs);
     for (Index j = 0; j < nrhs; ++j) {
       double* b = rhs + static_cast<size_t>(j) * dim_;
-      const bool on_pivoted = holder_ == Holder::kPivoted;
-      if ((on_pivoted ? pivoted_.solve(b) : ldlt_.solve(b)) > options_.ldlt.residual_tolerance) {
+      if (solve_own(b) > options_.ldlt.residual_tolerance) {
         std::copy(original_.begin(), original_.end(), rhs);
-        if (!on_pivoted) return fall_back(ia, ja, nrhs, rhs, check_inertia, negative);
+        if (holder_ != Holder::kPivoted) return fall_back(ia, ja, nrhs, rhs, check_inertia, negative);
         if (raise_threshold()) {
           ++counts_.factorisations;
           return factor_pivoted(ia, ja, nrhs, rhs, check_inertia, negative);

@@ -461,7 +461,6 @@ PivotedLdlt::Factorised PivotedLdlt::factor(const double* values, const LdltSett
   negative_ = delayed_ = two_by_two_ = forced_ = 0;
   pivot_count_ = 0;
   factor_entries_ = 0;
-  largest_multiplier_ = 0.0;
   index_.clear();
   lx_used_ = 0;
   stack_used_ = 0;
@@ -549,10 +548,6 @@ PivotedLdlt::Factorised PivotedLdlt::factor(const double* values, const LdltSett
     lx_ptr_[sn] = lx_used_;
     std::copy(f, f + static_cast<size_t>(m) * npiv,
               grow(lx_, lx_used_, static_cast<size_t>(m) * npiv));
-    for (int c = 0; c < npiv; ++c)
-      for (int i = c + 1; i < m; ++i)
-        largest_multiplier_ =
-            std::max(largest_multiplier_, std::abs(f[i + static_cast<size_t>(c) * m]));
     factor_entries_ +=
         static_cast<int64_t>(npiv) * (m - npiv) + static_cast<int64_t>(npiv) * (npiv - 1) / 2;
     if (parent_[sn] == -1) continue;  // a root eliminates everything (eliminate() saw to it)
@@ -637,6 +632,16 @@ void PivotedLdlt::factors_inverse(double* x) {
     l.topRows(npiv).transpose().triangularView<Eigen::UnitUpper>().solveInPlace(v.head(npiv));
     for (int i = 0; i < npiv; ++i) x[g[i]] = xl[i];
   }
+}
+
+double PivotedLdlt::largest_multiplier() const {
+  double largest = 0.0;
+  for (int sn = 0; sn < supernodes(); ++sn) {
+    ConstMatrix l(lx_.data() + lx_ptr_[sn], m_[sn], npiv_[sn]);
+    for (int c = 0; c < npiv_[sn]; ++c)
+      for (int i = c + 1; i < m_[sn]; ++i) largest = std::max(largest, std::abs(l(i, c)));
+  }
+  return largest;
 }
 
 double PivotedLdlt::solve(double* b) {

@@ -83,7 +83,7 @@ class PivotedLdlt {
   int64_t factor_entries() const { return factor_entries_; }  // nnz(L) with delays, no diagonal
   // max |L(i, j)|: at most 1/threshold unless forced() (the threshold test bounds every
   // multiplier of a 1×1 and a 2×2 pivot).
-  double largest_multiplier() const { return largest_multiplier_; }
+  double largest_multiplier() const;  // computed from the stored factors
   double flops() const { return flops_; }  // multiply-adds of the analysis (no delays)
   int pairs() const { return pairs_; }     // constraint rows ordered right after a primal partner
   int supernodes() const { return static_cast<int>(first_.size()) - 1; }
@@ -143,7 +143,6 @@ class PivotedLdlt {
   int negative_ = 0, delayed_ = 0, two_by_two_ = 0, forced_ = 0, refinement_steps_used_ = 0;
   int64_t factor_entries_ = 0;
   double zero_pivot_ = 0.0;
-  double largest_multiplier_ = 0.0;
   LdltSettings settings_;
 };
 
