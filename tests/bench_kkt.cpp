@@ -313,7 +313,7 @@ json run_pivoted(const KktFile& k, const Symmetric& a, const LdltSettings& setti
                                                                   : "not_finite";
   out["empty_rows"] = ldlt.empty_rows();
   out["supernodes"] = ldlt.supernodes();
-  out["pairs"] = ldlt.pairs();
+  out["postponed"] = ldlt.postponed();
   out["flops"] = ldlt.flops();
   if (!factors) return out;
   out["negative"] = ldlt.negative();

@@ -8,6 +8,8 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <random>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "core/linalg/pivoted_ldlt.h"
@@ -58,12 +60,28 @@ TEST(PivotedLdlt, KktMatricesGetTheDenseInertiaAndSolution) {
       const Triplets t = kkt(40, 15, c, seed % 2 == 0, seed);
       if (smallest_singular_value(t.dense()) < 1e-8) continue;  // singular: its own test
       const std::string what = "seed " + std::to_string(seed) + " c " + std::to_string(c);
-      expect_dense_answer(t, 40, what + ", paired");
-      expect_dense_answer(t, t.n, what + ", unpaired");  // constraint rows ordered as any other
+      expect_dense_answer(t, 40, what + ", constraint rows postponed");
+      expect_dense_answer(t, t.n, what + ", not");  // constraint rows ordered as any other
       ++checked;
     }
   }
   EXPECT_GE(checked, 18);
+}
+
+// The ordering puts constraint rows that AMD orders before all their primal neighbours behind
+// the first of them, which leaves AMD's fill (the LDLᵀ's) about as it is: no neighbour of the
+// row lies between the two places. (On the bench_kkt corpus's paper B2 matrices: 1.17 times;
+// the ordering it replaced, AMD on the graph with constraint rows merged into a primal
+// neighbour, 3.6 times.)
+TEST(PivotedLdlt, ConstraintRowsPostponedBehindAPrimalNeighbourKeepAmdsFill) {
+  for (const auto& [nx, m] : {std::pair{400, 150}, {300, 200}, {200, 190}, {90, 30}}) {
+    const Triplets t = kkt(nx, m, 0.0, true, 1);
+    const PivotedLdlt pivoted = testing_kkt::analysed<PivotedLdlt>(t, nx);
+    const SparseLdlt ldlt = testing_kkt::analysed<SparseLdlt>(t, nx);
+    const std::string what = std::to_string(nx) + " + " + std::to_string(m);
+    EXPECT_GT(pivoted.postponed(), 0) << what;
+    EXPECT_LE(pivoted.flops(), 1.25 * ldlt.flops()) << what;  // 1.03–1.19 here
+  }
 }
 
 TEST(PivotedLdlt, IndefiniteMatricesWithZeroDiagonalsNeedTwoByTwoPivotsAndDelays) {

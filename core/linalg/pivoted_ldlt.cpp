@@ -14,6 +14,9 @@ namespace {
 
 // `count` more entries at the end of the first `used` of v, which grows (geometrically, zeroing
 // only what it adds) when it is too short: no allocation once it has been long enough.
+// Fronts with fewer pivots update their rows below by columns, more by a GEMM (Eigen's).
+constexpr int kGemmPivots = 16;
+
 double* grow(std::vector<double>& v, size_t& used, size_t count) {
   if (v.size() < used + count) v.resize(std::max(used + count, 2 * v.size()));
   double* out = v.data() + used;
@@ -21,7 +24,20 @@ double* grow(std::vector<double>& v, size_t& used, size_t count) {
   return out;
 }
 
+// v with at least `count` entries, grown only when too short (the contents are then scratch).
+template <class T>
+T* at_least(std::vector<T>& v, size_t count) {
+  if (v.size() < count) v.resize(std::max(count, 2 * v.size()));
+  return v.data();
+}
+
 using Matrix = Eigen::Map<Eigen::MatrixXd>;
+using ConstVector = Eigen::Map<const Eigen::VectorXd>;
+
+// max_i |x_i| over `count` entries (0 when there are none), in Eigen's packets.
+double largest_abs(const double* x, int count) {
+  return count > 0 ? ConstVector(x, count).cwiseAbs().maxCoeff() : 0.0;
+}
 using ConstMatrix = Eigen::Map<const Eigen::MatrixXd>;
 using Vector = Eigen::Map<Eigen::VectorXd>;
 
@@ -71,63 +87,35 @@ std::vector<int> postorder(const std::vector<int>& parent) {
 
 }  // namespace
 
-std::vector<int> PivotedLdlt::paired_order(int n, int nnz, const int* rows, const int* cols,
-                                           int base, int dual_from) {
-  // Pairs: each constraint row c takes an unpaired primal neighbour j of least degree.
-  std::vector<int> degree(n, 0);
+std::vector<int> PivotedLdlt::postponed_order(int n, int nnz, const int* rows, const int* cols,
+                                              int base, int dual_from) {
+  const std::vector<int> amd = amd_order(n, nnz, rows, cols, base);
+  std::vector<int> position(n);
+  for (int k = 0; k < n; ++k) position[amd[k]] = k;
+  std::vector<int> earliest(n, n);  // a constraint row's earliest primal neighbour in `amd`
   for (int t = 0; t < nnz; ++t) {
     const int i = rows[t] - base, j = cols[t] - base;
-    if (i != j) ++degree[i], ++degree[j];
+    if (i >= dual_from && j < dual_from) earliest[i] = std::min(earliest[i], position[j]);
+    if (j >= dual_from && i < dual_from) earliest[j] = std::min(earliest[j], position[i]);
   }
-  std::vector<int> start(n + 1, 0), adjacent;
-  for (int i = 0; i < n; ++i) start[i + 1] = start[i] + degree[i];
-  adjacent.resize(start[n]);
-  std::vector<int> fill(start.begin(), start.end() - 1);
-  for (int t = 0; t < nnz; ++t) {
-    const int i = rows[t] - base, j = cols[t] - base;
-    if (i != j) adjacent[fill[i]++] = j, adjacent[fill[j]++] = i;
-  }
-  std::vector<int> partner(n, -1);
-  pairs_ = 0;
-  for (int c = dual_from; c < n; ++c) {
-    int best = -1;
-    for (int p = start[c]; p < start[c + 1]; ++p) {
-      const int j = adjacent[p];
-      if (j < dual_from && partner[j] == -1 &&
-          (best == -1 || degree[j] < degree[best] || (degree[j] == degree[best] && j < best)))
-        best = j;
+  // Sorted by (where it goes, after the variable there or not, where it was).
+  struct Key {
+    int at, after, was;
+    bool operator<(const Key& o) const {
+      return at != o.at ? at < o.at : after != o.after ? after < o.after : was < o.was;
     }
-    if (best == -1) continue;
-    partner[c] = best;
-    partner[best] = c;
-    ++pairs_;
+  };
+  std::vector<Key> key(n);
+  postponed_ = 0;
+  for (int k = 0; k < n; ++k) {
+    const int i = amd[k];
+    const bool postpone = i >= dual_from && earliest[i] < n && earliest[i] > k;
+    key[k] = postpone ? Key{earliest[i], 1, k} : Key{k, 0, k};
+    postponed_ += postpone;
   }
-  // The compressed graph: a pair is one node (numbered by its primal member), AMD on it.
-  std::vector<int> node(n, -1), members;  // node[i]: i's compressed node
-  int nodes = 0;
-  for (int i = 0; i < n; ++i) {
-    if (i >= dual_from && partner[i] != -1) continue;  // numbered with its primal partner
-    node[i] = nodes;
-    if (partner[i] != -1) node[partner[i]] = nodes;
-    ++nodes;
-  }
-  std::vector<int> crows(nnz), ccols(nnz);
-  for (int t = 0; t < nnz; ++t) {
-    crows[t] = node[rows[t] - base];
-    ccols[t] = node[cols[t] - base];
-  }
-  const std::vector<int> compressed = amd_order(nodes, nnz, crows.data(), ccols.data(), 0);
-  // Expanded: each node's primal member, then its constraint partner.
-  std::vector<int> first_member(nodes, -1);
-  for (int i = n - 1; i >= 0; --i) first_member[node[i]] = i;
-  std::vector<int> order;
-  order.reserve(n);
-  for (int k = 0; k < nodes; ++k) {
-    const int i = first_member[compressed[k]];
-    order.push_back(i);
-    if (partner[i] != -1 && i < dual_from) order.push_back(partner[i]);
-  }
-  DISCO_CHECK(static_cast<int>(order.size()) == n, "every row in the paired order");
+  std::sort(key.begin(), key.end());
+  std::vector<int> order(n);
+  for (int k = 0; k < n; ++k) order[k] = amd[key[k].was];
   return order;
 }
 
@@ -135,10 +123,10 @@ void PivotedLdlt::analyse(int n, int nnz, const int* rows, const int* cols, int 
                           int dual_from) {
   DISCO_CHECK(n >= 0 && nnz >= 0 && dual_from >= 0 && dual_from <= n, "a matrix shape");
   n_ = n;
-  // AMD on the graph whose constraint rows are paired with a primal neighbour, then a postorder
-  // of its elimination tree (the same fill; fronts become contiguous and children's update
+  // AMD with constraint rows postponed behind a primal neighbour, then a postorder of its
+  // elimination tree (the same fill; fronts become contiguous and children's update
   // matrices lie on a stack in the order their parent needs them).
-  const std::vector<int> amd = paired_order(n, nnz, rows, cols, base, dual_from);
+  const std::vector<int> amd = postponed_order(n, nnz, rows, cols, base, dual_from);
   a_.assign(n, nnz, rows, cols, base, amd);
   const std::vector<int> post = postorder(elimination_tree(n, a_.ap(), a_.ai()));
   std::vector<int> order(n);
@@ -266,18 +254,21 @@ void PivotedLdlt::analyse(int n, int nnz, const int* rows, const int* cols, int 
   d_.assign(n, 0.0);
   e_.assign(n, 0.0);
   second_.assign(n, 0);
-  index_.reserve(rows_.size());
+  index_.assign(rows_.size(), 0);
 
   negative_ = delayed_ = two_by_two_ = forced_ = 0;
 }
 
 void PivotedLdlt::relax(const std::vector<int>& count, const std::vector<int>& parent,
                         std::vector<int>& node_of) {
-  // Relaxed amalgamation (as CHOLMOD's, with its limits): a supernode takes in its last child
-  // (the one whose columns end just before its own) while the merged front has at most 4
-  // columns, or its explicit zeros are less than 80 % of its entries with at most 16 columns,
-  // 10 % with at most 48, 5 % beyond. Fewer, larger fronts: less overhead per front, and a
-  // zero diagonal meets a partner for a 2×2 pivot in its own front more often.
+  // Relaxed amalgamation (after CHOLMOD's): a supernode takes in its last child (the one whose
+  // columns end just before its own) while the merged front has at most 4 columns, or its
+  // explicit zeros are less than 30 % of its entries with at most 16 columns, 10 % with at most
+  // 48, 5 % beyond. Fewer, larger fronts: less overhead per front, and a zero diagonal meets a
+  // partner for a 2×2 pivot in its own front more often. (CHOLMOD's 80 % for 16 columns: 1.11
+  // times the factorisation time on bench_kkt matrices of paper A1, A3, B2, doorway and
+  // three_robots_contact; 20 % or 10 %: 1.06, 1.08. No merging beyond fundamental supernodes:
+  // 1.3–1.5 times, measured with the earlier, slower small fronts.)
   const int fundamental = static_cast<int>(first_.size()) - 1;
   std::vector<int> start(fundamental), columns(fundamental), rep(fundamental), up(fundamental);
   std::vector<double> zeros(fundamental, 0.0);
@@ -300,7 +291,7 @@ void PivotedLdlt::relax(const std::vector<int>& count, const std::vector<int>& p
       const double z = zeros[c] + zeros[s] + added;
       const int merged = columns[c] + columns[s];
       const double entries = merged * (merged + 1.0) / 2.0 + merged * below;
-      const bool take = merged <= 4 || (merged <= 16 && z < 0.8 * entries) ||
+      const bool take = merged <= 4 || (merged <= 16 && z < 0.3 * entries) ||
                         (merged <= 48 && z < 0.1 * entries) || z < 0.05 * entries;
       if (!take) break;
       rep[c] = s;
@@ -344,32 +335,32 @@ int PivotedLdlt::eliminate(double* f, int m, int nf, int* g, bool root, double t
       failed = 0;
     }
     if (c < p || c >= nf) c = p;
-    // Column c: its largest entry off the diagonal (all remaining rows), and the fully summed
-    // row r of its largest entry.
+    // Column c: the largest |entry| among its fully summed rows other than c (few) and the row
+    // r where it is, and among the rows below (most; vectorised).
     const double* col = f + static_cast<size_t>(c) * m;
-    double gamma = 0.0, best = 0.0;
+    double largest_summed = 0.0;
     int r = -1;
-    for (int i = p; i < m; ++i) {
-      if (i == c) continue;
+    for (int i = p; i < nf; ++i) {
       const double v = std::abs(col[i]);
-      gamma = std::max(gamma, v);
-      if (i < nf && v > best) {
-        best = v;
+      if (i != c && v > largest_summed) {
+        largest_summed = v;
         r = i;
       }
     }
+    const double largest_below = largest_abs(col + nf, m - nf);
+    const double gamma = std::max(largest_summed, largest_below);
     const double acc = at(c, c);
     int pivot = 0;  // 1: 1×1 on c; 2: 2×2 on (c, r); 3: 1×1 on r
     if (std::abs(acc) > tiny && std::abs(acc) >= u * gamma) {
       pivot = 1;
     } else if (r >= 0) {
       const double* colr = f + static_cast<size_t>(r) * m;
-      double gc = 0.0, gr = 0.0, gr_all = 0.0;
-      for (int i = p; i < m; ++i) {
-        if (i != c && i != r) {
-          gc = std::max(gc, std::abs(col[i]));
-          gr = std::max(gr, std::abs(colr[i]));
-        }
+      // The largest |a_ic| and |a_ir| over i ≠ c, r.
+      double gc = largest_below, gr = largest_abs(colr + nf, m - nf), gr_all = 0.0;
+      for (int i = p; i < nf; ++i) {
+        if (i == c || i == r) continue;
+        gc = std::max(gc, std::abs(col[i]));
+        gr = std::max(gr, std::abs(colr[i]));
       }
       const double arr = at(r, r), arc = at(r, c);
       gr_all = std::max(gr, std::abs(arc));
@@ -397,8 +388,7 @@ int PivotedLdlt::eliminate(double* f, int m, int nf, int* g, bool root, double t
       if (below > 0) {
         auto w = front.col(p).segment(p + 1, below);
         if (fully > 0) {
-          work_.resize(static_cast<size_t>(fully));
-          Vector t(work_.data(), fully);
+          Vector t(at_least(work_, static_cast<size_t>(fully)), fully);
           t = w.head(fully) / d;
           front.block(p + 1, p + 1, below, fully).noalias() -= w * t.transpose();
         }
@@ -420,12 +410,17 @@ int PivotedLdlt::eliminate(double* f, int m, int nf, int* g, bool root, double t
       if (below > 0) {
         auto w = front.block(p + 2, p, below, 2);
         // L = W D⁻¹, D⁻¹ = [e, −b; −b, a] / det; the update −L Wᵀ over the fully summed columns.
-        work_.resize(static_cast<size_t>(below) * 2);
-        Matrix l(work_.data(), below, 2);
+        Matrix l(at_least(work_, static_cast<size_t>(below) * 2), below, 2);
         l.col(0) = (w.col(0) * e - w.col(1) * b) / det;
         l.col(1) = (w.col(1) * a - w.col(0) * b) / det;
-        if (fully > 0)
-          front.block(p + 2, p + 2, below, fully).noalias() -= l * w.topRows(fully).transpose();
+        // Column by column (a GEMM's packing costs more than two columns' update).
+        for (int j = 0; j < fully; ++j) {
+          const double w0 = w(j, 0), w1 = w(j, 1);
+          double* column = f + (p + 2) + static_cast<size_t>(p + 2 + j) * m;
+          const double* l0 = l.col(0).data();
+          const double* l1 = l.col(1).data();
+          for (int i = 0; i < below; ++i) column[i] -= l0[i] * w0 + l1[i] * w1;
+        }
         w = l;
       }
       at(p + 1, p) = 0.0;  // L's (p+1, p): the 2×2 block is in D
@@ -461,7 +456,7 @@ PivotedLdlt::Factorised PivotedLdlt::factor(const double* values, const LdltSett
   negative_ = delayed_ = two_by_two_ = forced_ = 0;
   pivot_count_ = 0;
   factor_entries_ = 0;
-  index_.clear();
+  index_used_ = 0;
   lx_used_ = 0;
   stack_used_ = 0;
   stack_delayed_.clear();
@@ -477,9 +472,9 @@ PivotedLdlt::Factorised PivotedLdlt::factor(const double* values, const LdltSett
     for (size_t u = top; u < updates_.size(); ++u) nd += updates_[u].delayed;
     const int m = nd + structure, nf = nd + own;
     // The front's variables: the delayed ones (in the children's order), then the structure.
-    const size_t gofs = index_.size();
-    index_.resize(gofs + m);
-    int* g = index_.data() + gofs;
+    const size_t gofs = index_used_;
+    index_used_ += m;
+    int* g = at_least(index_, index_used_) + gofs;
     {
       int t = 0;
       for (size_t u = top; u < updates_.size(); ++u)
@@ -491,8 +486,7 @@ PivotedLdlt::Factorised PivotedLdlt::factor(const double* values, const LdltSett
     double* f = front_.data();
     // Assembled into the lower triangle (zeroed first); the fully summed block is then mirrored
     // into the upper one, which the pivot search reads as the rest of each column.
-    for (int j = 0; j < m; ++j)
-      std::fill(f + j + static_cast<size_t>(j) * m, f + static_cast<size_t>(j + 1) * m, 0.0);
+    std::fill(f, f + static_cast<size_t>(m) * m, 0.0);  // one call: faster than by columns
     auto add = [&](int i, int j, double v) {
       f[std::max(i, j) + static_cast<size_t>(std::min(i, j)) * m] += v;
     };
@@ -509,7 +503,7 @@ PivotedLdlt::Factorised PivotedLdlt::factor(const double* values, const LdltSett
       std::vector<int>& map = map_;
       for (size_t u = top; u < updates_.size(); ++u) {
         const Update& up = updates_[u];
-        map.resize(up.size);
+        at_least(map, static_cast<size_t>(up.size));
         for (int t = 0; t < up.delayed; ++t) map[t] = delayed_at + t;
         const int* cmap = child_map_.data() + child_map_ptr_[up.node];
         for (int t = up.delayed; t < up.size; ++t) map[t] = nd + cmap[t - up.delayed];
@@ -551,14 +545,15 @@ PivotedLdlt::Factorised PivotedLdlt::factor(const double* values, const LdltSett
     factor_entries_ +=
         static_cast<int64_t>(npiv) * (m - npiv) + static_cast<int64_t>(npiv) * (npiv - 1) / 2;
     if (parent_[sn] == -1) continue;  // a root eliminates everything (eliminate() saw to it)
+    // The update matrix, on the stack: the delayed variables' columns as eliminate() left them,
+    // then the rows below with S − L_b D L_bᵀ (lower triangle).
     Matrix front(f, m, m);
-    const int below = m - nf;
+    const int below = m - nf, nd2 = nf - npiv, size = m - npiv;
+    const bool small = npiv < kGemmPivots;
+    Matrix w(at_least(work_, static_cast<size_t>(below) * npiv), below, npiv);
+    auto lb = front.block(nf, 0, below, npiv);
     if (npiv > 0 && below > 0) {
-      // S ← S − L_b D L_bᵀ on the rows below (lower triangle).
-      work_.resize(static_cast<size_t>(below) * npiv);
-      Matrix w(work_.data(), below, npiv);
-      auto lb = front.block(nf, 0, below, npiv);
-      for (int c = 0; c < npiv; ++c) {
+      for (int c = 0; c < npiv; ++c) {  // W = L_b D
         const int q = q0 + c;
         if (second_[q]) continue;
         if (c + 1 < npiv && second_[q + 1]) {
@@ -568,14 +563,27 @@ PivotedLdlt::Factorised PivotedLdlt::factor(const double* values, const LdltSett
           w.col(c) = lb.col(c) * d_[q];
         }
       }
-      front.block(nf, nf, below, below).triangularView<Eigen::Lower>() -= lb * w.transpose();
+      if (!small)
+        front.block(nf, nf, below, below).triangularView<Eigen::Lower>() -= lb * w.transpose();
     }
-    const int size = m - npiv;
-    Update up{stack_used_, size, nf - npiv, stack_delayed_.size(), sn};
+    Update up{stack_used_, size, nd2, stack_delayed_.size(), sn};
     double* cb = grow(stack_, stack_used_, static_cast<size_t>(size) * size);
-    for (int j = 0; j < size; ++j)
-      for (int i = j; i < size; ++i)
-        cb[i + static_cast<size_t>(j) * size] = f[(npiv + i) + static_cast<size_t>(npiv + j) * m];
+    for (int j = 0; j < size; ++j) {
+      const double* from = f + npiv + static_cast<size_t>(npiv + j) * m;
+      double* to = cb + static_cast<size_t>(j) * size;
+      for (int i = j; i < size; ++i) to[i] = from[i];
+      if (j < nd2 || !small) continue;
+      // A small front's update column by column, in place on the stack: a GEMM's packing
+      // costs more than it saves.
+      const int jb = j - nd2;
+      for (int c = 0; c < npiv; ++c) {
+        const double coef = w(jb, c);
+        if (coef == 0.0) continue;
+        const double* l = f + nf + static_cast<size_t>(c) * m;
+        double* t = to + nd2;
+        for (int i = jb; i < below; ++i) t[i] -= l[i] * coef;
+      }
+    }
     for (int t = npiv; t < nf; ++t) stack_delayed_.push_back(g[t]);
     updates_.push_back(up);
   }
@@ -591,7 +599,7 @@ void PivotedLdlt::factors_inverse(double* x) {
   // Front sn's entries of x into xl (its variables, eliminated first).
   auto gather = [&](int sn) {
     const int* g = index_.data() + index_ptr_[sn];
-    xl.resize(m_[sn]);
+    at_least(xl, static_cast<size_t>(m_[sn]));
     for (int i = 0; i < m_[sn]; ++i) xl[i] = x[g[i]];
     return g;
   };
