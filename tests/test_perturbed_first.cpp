@@ -73,20 +73,20 @@ TEST(PerturbedFirst, IpoptTriesTheUnperturbedMatrixOnlyInItsFirstThreeIterations
   // All four answered; after them Ipopt never tries delta_x = 0 again.
   EXPECT_EQ(on.result.kkt.answered, 4);
   EXPECT_EQ(on.unperturbed, 4);
-  // Every iteration factorised at least once; with the option, fewer factorisations per
-  // iteration (at most the trials Ipopt logs, less those answered, plus the cold start's least-squares
-  // multiplier estimate, which Ipopt does not log as a trial).
+  // Every iteration factorised at least once, and at most the trials Ipopt logs (with the
+  // option, less those answered), plus the cold start's least-squares multiplier estimate,
+  // which Ipopt does not log as a trial.
   // (A matrix disco's LDLᵀ passes on is one trial factorised twice: KktCounts::matrices.)
   const int on_trials = on.result.kkt.matrices();
   const int off_trials = off.result.kkt.matrices();
   EXPECT_GE(on_trials, on.result.iterations);
   EXPECT_LE(on_trials, on.trials - 4 + 1);
   EXPECT_LE(off_trials, off.trials + 1);
-  // Fewer per iteration: the totals also depend on how many iterations each path takes, which
-  // roundoff decides (with the pivoting LDLᵀ's ordering of 2026-11-26 the option's path took
-  // 109 iterations and 166 factorisations, without it 82 and 150).
-  EXPECT_LT(static_cast<double>(on_trials) / on.result.iterations,
-            static_cast<double>(off_trials) / off.result.iterations);
+  // Whether the option saves factorisations in all is not a property of one solve: the two
+  // paths part through roundoff, and how many iterations and inertia corrections each takes
+  // differs with them (at 7a3d158: 166 factorisations in 109 iterations with the option, 150
+  // in 82 without). The saving is measured on the start set (scripts/results/bench_starts.md,
+  // section "kkt.perturbed_first=true vs baseline kkt.perturbed_first=false").
 }
 
 // A start of the objective reduction (start 0 of a small swap scene) ends with a certified

@@ -607,11 +607,16 @@ void PivotedLdlt::factors_inverse(double* x) {
     const int m = m_[sn], npiv = npiv_[sn];
     if (npiv == 0) continue;
     const int* g = gather(sn);
-    ConstMatrix l(lx_.data() + lx_ptr_[sn], m, npiv);
-    Vector v(xl.data(), m);
-    l.topRows(npiv).triangularView<Eigen::UnitLower>().solveInPlace(v.head(npiv));
-    if (m > npiv) v.tail(m - npiv).noalias() -= l.bottomRows(m - npiv) * v.head(npiv);
-    for (int i = 0; i < m; ++i) x[g[i]] = xl[i];
+    const double* l = lx_.data() + lx_ptr_[sn];
+    double* v = xl.data();
+    // By columns (the fronts are small: Eigen's triangular solve and GEMV cost more).
+    for (int c = 0; c < npiv; ++c) {
+      const double vc = v[c];
+      if (vc == 0.0) continue;
+      const double* column = l + static_cast<size_t>(c) * m;
+      for (int i = c + 1; i < m; ++i) v[i] -= column[i] * vc;
+    }
+    for (int i = 0; i < m; ++i) x[g[i]] = v[i];
   }
   // D.
   for (int sn = 0; sn < nodes; ++sn) {
@@ -634,11 +639,15 @@ void PivotedLdlt::factors_inverse(double* x) {
     const int m = m_[sn], npiv = npiv_[sn];
     if (npiv == 0) continue;
     const int* g = gather(sn);
-    ConstMatrix l(lx_.data() + lx_ptr_[sn], m, npiv);
-    Vector v(xl.data(), m);
-    if (m > npiv) v.head(npiv).noalias() -= l.bottomRows(m - npiv).transpose() * v.tail(m - npiv);
-    l.topRows(npiv).transpose().triangularView<Eigen::UnitUpper>().solveInPlace(v.head(npiv));
-    for (int i = 0; i < npiv; ++i) x[g[i]] = xl[i];
+    const double* l = lx_.data() + lx_ptr_[sn];
+    double* v = xl.data();
+    for (int c = npiv - 1; c >= 0; --c) {  // by columns, as forward
+      const int below = m - c - 1;
+      if (below > 0)
+        v[c] -= ConstVector(l + static_cast<size_t>(c) * m + c + 1, below)
+                    .dot(ConstVector(v + c + 1, below));
+    }
+    for (int i = 0; i < npiv; ++i) x[g[i]] = v[i];
   }
 }
 
