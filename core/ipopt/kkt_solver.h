@@ -45,8 +45,8 @@
 //     MUMPS behind it as below (the same certificate answers for the LDLᵀ's wrong inertias).
 //
 // kkt.solver pivoted: disco's multifrontal LDLᵀ with threshold 1×1/2×2 pivoting
-// (core/linalg/pivoted_ldlt.h; analysed once per solve, the constraint block paired with
-// primal rows for its ordering). No regularisation: its inertia is D's, exact, so a wrong one
+// (core/linalg/pivoted_ldlt.h; analysed once per solve, each constraint row ordered behind a
+// primal neighbour). No regularisation: its inertia is D's, exact, so a wrong one
 // is answered "wrong inertia" at once, and a matrix with a singular remaining block (or an
 // empty row) "singular". A right one is solved and refined to kkt.ldlt.residual_tolerance.
 // When a solve does not reach it, or Ipopt asks for more quality, the pivot threshold u is
