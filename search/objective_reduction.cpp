@@ -79,7 +79,9 @@ struct Reduction {
     } else {
       problem.bound_objective(q.value, q.bound == Bound::kFixed);
     }
-    const ElasticRequest req = request(q.iteration_limit, reserve);
+    ElasticRequest req = request(q.iteration_limit, reserve);
+    // A fixed step fixes J: no zeta raise (objective_reduction.h, "Fixed steps and zeta").
+    req.objective_fixed = q.bound == Bound::kFixed;
     MpccResult r = solver.solve(problem.program(), from, req);
     note_deadline(req, r);
     return r;

@@ -89,6 +89,20 @@
 //   within reach of a branch: on a refine of paper B3 (start 9 from its screen) three
 //   minimisations each ended at max_iter with complementarity 2e-8-1e-6, and the start took
 //   15,284 iterations to 10.092682 without the salvage.
+// Fixed steps and zeta. A fixed step (and a probe) fixes J, so J is constant on its feasible
+//   set and the elastic NLP minimises eps alone, whatever zeta: a fixed step that converges
+//   with complementarity not tight ends there (ElasticRequest::objective_fixed), without the
+//   zeta rule's raises, which only rescale the objective (polish is still tried below 1e-2).
+//   The path does not change: a failed step leaves nothing behind (the next starts from the
+//   best point). Measured on the 18-start set (starts 0-2 of paper A3, A4, B1, B2, B3 and
+//   three_robots_contact): the same answers bit for bit, 0.953 of the Ipopt iterations. With
+//   raises, 2 of 123 fixed steps that ended not tight at the first zeta became tight (176
+//   starts, 0-3 of every scene in configs/scenarios and configs/stress, and paper A1, A2),
+//   both from a residual within twice the tolerance, where polish certifies them (without the
+//   raises those two starts ended lower, the other 174 the same). The
+//   feasibility phases keep the zeta rule: they start from a guess, where Ipopt can stop at a
+//   stationary point of eps that is not its minimum and the warm-started re-solve leaves it
+//   (tests/test_solution_file.cpp's push_box scene: 0.19, then 7e-9 after one raise).
 // The control flow above is search/reduction_phases.h: named phases and one transition
 // function; reduce_objective runs each phase's solve, passing the elastic solver its limits
 // (iteration cap, the time limit's deadline) as an ElasticRequest.

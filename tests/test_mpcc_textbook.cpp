@@ -695,6 +695,88 @@ TEST(MpccRelaxed, RaisesZetaUntilTheRelaxationHoldsThenSolves) {
   EXPECT_NEAR(r.z[1], 4.0, 1e-4);
 }
 
+// ------------------------------------------------ a fixed objective ---
+
+// ElasticRequest::objective_fixed: an MPCC whose objective is constant on its feasible set
+// (here f = t with t fixed at 2, as T_f in a fixed step of the objective reduction). The
+// elastic NLP then minimises eps alone whatever zeta, so the first solve's answer is final.
+class MpccFixedObjective : public ::testing::TestWithParam<FormPolish> {};
+
+// x, y >= 1, 0 <= x _|_ y >= 0 (never tight), f = t, t = 2; `tight_possible`: x, y >= 0 and
+// x + y >= 1 instead, from (1.5, 0.5), where complementarity can be tight ((1, 0) or (0, 1)).
+PolynomialProgram fixed_objective_problem(bool tight_possible) {
+  PolynomialProgram p;
+  const double lo = tight_possible ? 0.0 : 1.0;
+  p.add_variable(lo, kInf, 1.5);
+  p.add_variable(lo, kInf, tight_possible ? 0.5 : 1.5);
+  p.add_variable(2.0, 2.0, 2.0);
+  p.add(PolynomialProgram::kObjective, 1.0, V(2));
+  if (tight_possible) {
+    const int row = p.add_row(1.0, kInf);
+    p.add(row, 1.0, V(0) + V(1));
+  }
+  p.add_pair(S::variable(0), S::variable(1));
+  p.finalize();
+  return p;
+}
+
+// `p` solved from its initial point with ElasticRequest::objective_fixed, then without it
+// (the zeta rule), on one IpoptSolver with disco.yaml's options.
+std::pair<MpccResult, MpccResult> solve_both_ways(const PolynomialProgram& p,
+                                                  const ElasticSettings& s) {
+  IpoptSolver ipopt(disco_yaml_ipopt_settings());
+  const ElasticSolver solver(ipopt, s);
+  ElasticRequest fixed;
+  fixed.objective_fixed = true;
+  std::pair<MpccResult, MpccResult> out{solver.solve(p, p.initial_point(), fixed),
+                                        solver.solve(p, p.initial_point())};
+  return out;
+}
+
+// Not tight: one elastic solve, no raise, and the same smallest residual (min(x, y) = 1) as
+// the zeta rule reaches after its raises.
+TEST_P(MpccFixedObjective, EndsNotTightAfterOneSolveWithoutRaisingZeta) {
+  const auto [form, polish] = GetParam();
+  const ElasticSettings s = settings_for(form, polish);
+  const auto [once, raised] = solve_both_ways(fixed_objective_problem(false), s);
+  SCOPED_TRACE("objective_fixed: " + describe(once) + "\nzeta rule: " + describe(raised));
+  EXPECT_EQ(once.status, MpccStatus::kElasticNotTight);
+  EXPECT_EQ(raised.status, MpccStatus::kElasticNotTight);
+  EXPECT_EQ(once.nlp_solves, 1);
+  EXPECT_DOUBLE_EQ(once.zeta, s.zeta);
+  EXPECT_GE(raised.nlp_solves, 2);  // the zeta rule raised at least once
+  EXPECT_GT(raised.zeta, s.zeta);
+  EXPECT_FALSE(once.polished);
+  // min(x, y) >= 1 is the least there is; the penalty forms reach it to Ipopt's tolerance, the
+  // relaxed form's stages end at the barrier level mu = barrier_ratio * sigma, ~1e-4 inside.
+  const double reach = form == ElasticFormulation::kRelaxed ? 1e-3 : 1e-6;
+  for (const MpccResult* r : {&once, &raised}) {
+    EXPECT_GE(r->certificate.max_complementarity, 1.0 - 1e-9);
+    EXPECT_LE(r->certificate.max_complementarity, 1.0 + reach);
+  }
+}
+
+// Where complementarity can be tight, the request changes nothing: solved by the first
+// elastic solve (and polish), on the branch y = 0. (From a symmetric start, x = y,
+// Ipopt stops at the stationary point (0.5, 0.5) of eps = x y on x + y = 1 with either rule.)
+TEST_P(MpccFixedObjective, SolvesATightProblemAsTheZetaRuleDoes) {
+  const auto [form, polish] = GetParam();
+  const auto [once, rule] = solve_both_ways(fixed_objective_problem(true), settings_for(form, polish));
+  SCOPED_TRACE("objective_fixed: " + describe(once) + "\nzeta rule: " + describe(rule));
+  ASSERT_EQ(once.status, MpccStatus::kSolved);
+  ASSERT_EQ(rule.status, MpccStatus::kSolved);
+  EXPECT_EQ(once.nlp_solves, rule.nlp_solves);
+  EXPECT_LE(once.certificate.max_complementarity, 1e-6);
+  EXPECT_LE(once.certificate.max_violation, 1e-6);
+  EXPECT_GE(once.z[0], 1.0 - 1e-6);  // on the branch y = 0, x + y >= 1
+  EXPECT_NEAR(once.z[1], 0.0, 1e-6);
+  // No raise was due, so both took the same path: the same point, bit for bit.
+  EXPECT_EQ((once.z - rule.z).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_NEAR(once.objective, 2.0, 1e-12);
+}
+
+INSTANTIATE_TEST_SUITE_P(Textbook, MpccFixedObjective, all_form_polish(), form_polish_name);
+
 // ------------------------------------------------------- warm starts ---
 
 class MpccWarmStart : public ::testing::TestWithParam<FormPolish> {};

@@ -306,6 +306,25 @@ TEST(ObjectiveReduction, ALocalOptimumEndsTheLoopOnceAProbeBelowItFails) {
   }
 }
 
+// A fixed step fixes T_f, the whole objective: the elastic NLP then minimises eps alone
+// whatever zeta (ElasticRequest::objective_fixed), so a fixed step that ends not tight takes
+// one elastic solve and no zeta raise (plus polish only when complementarity came within
+// 1e-2). Before, the zeta rule raised at least once there, to the same answer.
+TEST(ObjectiveReduction, AFixedStepThatCannotBeTightTakesOneElasticSolve) {
+  RobotProblem problem(scenario("two_robots_swap_avoid"));
+  const ReductionResult result = reduce_plainly(problem);
+  print(result);
+  ASSERT_TRUE(result.found);
+  int not_tight = 0;
+  for (const SolveRecord& r : result.solves) {
+    if (r.kind != SolveKind::kFixedStep || r.status != MpccStatus::kElasticNotTight) continue;
+    ++not_tight;
+    const bool polish_tried = r.certificate.max_complementarity < 1e-2;
+    EXPECT_EQ(r.nlp_solves, polish_tried ? 2 : 1) << "fixed step at " << r.bound;
+  }
+  EXPECT_GE(not_tight, 1) << "no fixed step ended not tight: the test checks nothing";
+}
+
 TEST(ObjectiveReduction, ACappedEarlyMinimisationHandsBackToTheFixedSteps) {
   // reduction.minimize_iterations caps the minimisation after the first failed
   // fixed step; cut short, it leaves the best point as it was, the fixed steps

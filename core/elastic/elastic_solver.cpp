@@ -211,7 +211,8 @@ bool ElasticSolver::penalty_loop(ElasticNlp& nlp, NlpPoint start, double zeta,
                        : MpccStatus::kFailed;
       return true;
     }
-    if (!raise_zeta(out.certificate.max_complementarity, previous_residual, zeta)) {
+    if (request.objective_fixed ||
+        !raise_zeta(out.certificate.max_complementarity, previous_residual, zeta)) {
       out.status = MpccStatus::kElasticNotTight;
       return true;
     }
@@ -259,7 +260,9 @@ bool ElasticSolver::relaxation_homotopy(ElasticNlp& nlp, NlpPoint start, double 
       // (raising zeta at every sigma was measured: paper B2 start 0 took 4,417 iterations
       // instead of 1,672). If it never held, zeta is too weak for any relaxation: raise it
       // as the penalty loop does (same stall rule, same zeta_max).
-      if (held || !raise_zeta(out.certificate.max_complementarity, previous_residual, zeta))
+      // With the objective fixed, eps's minimiser does not depend on zeta: no raise either.
+      if (held || request.objective_fixed ||
+          !raise_zeta(out.certificate.max_complementarity, previous_residual, zeta))
         return finish(true);
       continue;
     }

@@ -11,7 +11,9 @@
 //      put, then drops to zero once zeta passes the MPCC's multipliers), so
 //      only a residual that does not move at all signals that raising cannot
 //      help: that is what an active bound T_f <= B below the MPCC's optimum
-//      gives, since eps is then already minimal over {T_f <= B};
+//      gives, since eps is then already minimal over {T_f <= B}. When the
+//      objective is fixed (ElasticRequest::objective_fixed: T_f = B), eps is
+//      minimal after the first solve whatever zeta, and zeta is never raised;
 //   With formulation kRelaxed, steps 1-2 are instead a homotopy that follows Ipopt's barrier
 //   (after Leyffer, Lopez-Calva & Nocedal's relaxation; nosnoc's homotopy): the relaxed NLP
 //   (elastic_nlp.h) at sigma = sigma_0, sigma_0 * sigma_factor, ... down to sigma_min, each
@@ -92,6 +94,12 @@ struct ElasticSettings {
 struct ElasticRequest {
   int iteration_limit = 0;           // per Ipopt solve; 0 = Ipopt's max_iter only
   std::optional<Deadline> deadline;  // for the whole call; none = no limit
+  // The MPCC's objective is constant on its feasible set: a bound fixes it (T_f for objective
+  // time, or J's row). Then the elastic NLP minimises eps alone whatever zeta (zeta only scales
+  // the objective, and Ipopt's gradient scaling undoes even that), so a solve that converges
+  // with complementarity not tight is final: no zeta raise (kElasticNotTight at once; polish
+  // is still tried). Without it, the zeta rule of step 2.
+  bool objective_fixed = false;
 };
 
 // How well z satisfies the MPCC, in the MPCC's own units.
