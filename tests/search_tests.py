@@ -540,9 +540,9 @@ elif MODE == "manifest":
           f"--resume refuses runs without a manifest ({r.stderr[-200:]!r})")
 elif MODE in ("interrupt", "killrandom"):
     swap = os.path.join(os.path.dirname(BENCH), "../scenarios/two_robots_swap_avoid.yaml")
-    # interrupt: two starts of ~8 s each on this machine (200 steps; 120 steps took ~3 s once the
-    # LDLᵀ's fallback was the pivoting LDLᵀ, too close to the signal at 2.5 s), so both ranks
-    # are inside one at the signal; killrandom: the smoke benchmark.
+    # interrupt: two starts of ~10 s each here (200 steps), the signal sent after the first of
+    # their eight or so phases, so both ranks are inside one at the signal; killrandom: the
+    # smoke benchmark.
     config = [swap, "--set", "scene.steps=200", "--starts", "2"] if MODE == "interrupt" else [BENCH]
 
     def command(out, *extra):
@@ -570,11 +570,20 @@ elif MODE in ("interrupt", "killrandom"):
         for ranks in (1, 2):
             out = os.path.join(WORK, f"interrupt{ranks}")
             shutil.rmtree(out, ignore_errors=True)
-            proc = subprocess.Popen((MPI if ranks == 2 else []) + command(out), env=ENV,
+            proc = subprocess.Popen((MPI if ranks == 2 else []) + command(out, "--verbose"), env=ENV,
                                     stderr=subprocess.PIPE, text=True, start_new_session=True)
-            time.sleep(2.5)
-            proc.send_signal(signal.SIGINT)
+            # The signal goes once the verbose log shows every rank past the first phase of its
+            # start (not after a fixed sleep, whose verdict would depend on the machine's speed).
+            seen, begun = [], set()
+            for line in proc.stderr:
+                seen.append(line)
+                started = re.search(r"start (\d+):\s+1 feasibility\s", line)
+                begun |= {started.group(1)} if started else set()
+                if len(begun) == ranks:
+                    proc.send_signal(signal.SIGINT)
+                    break
             _, err = proc.communicate(timeout=60)
+            err = "".join(seen) + err
             name = "SIGINT" if ranks == 1 else "SIGTERM"  # mpirun passes Ctrl-C on as SIGTERM
             match = re.search(r"interrupted \((SIG\w+)\): (\d+) of (\d+) starts kept in (\S+), (\d+) lost "
                               r"\(cut short; their best so far is in best.json\); continue with --resume", err)
