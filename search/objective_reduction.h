@@ -93,6 +93,9 @@
 //   set and the elastic NLP minimises eps alone, whatever zeta: a fixed step that converges
 //   with complementarity not tight ends there (ElasticRequest::objective_fixed), without the
 //   zeta rule's raises, which only rescale the objective (polish is still tried below 1e-2).
+//   One whose eps has stagnated far from tight ends there, as not tight (elastic.stagnation,
+//   core/elastic/elastic_solver.h): a fixed step that fails leaves nothing behind, so a cut
+//   that only shortens a failure changes nothing else in the loop.
 //   The path does not change: a failed step leaves nothing behind (the next starts from the
 //   best point). Measured on the 18-start set (starts 0-2 of paper A3, A4, B1, B2, B3 and
 //   three_robots_contact): the same answers bit for bit, 0.953 of the Ipopt iterations. With

@@ -522,6 +522,52 @@ TEST(IpoptSolverSolve, AnIterationCapIsItsOwnOutcome) {
   EXPECT_GT(full.iterations, 3);
 }
 
+// HS071 with x0 fixed at its optimal value 1 (equal bounds): Ipopt leaves x0 out of its own x
+// (fixed_variable_treatment make_parameter), so a watched variable's place there moves.
+class Hs071FirstFixed : public Hs071 {
+ public:
+  Hs071FirstFixed() { z_hi_[0] = 1.0; }
+};
+
+// NlpLimits::watch sees the watched variable of every iterate (the last is the answer), and
+// stops the solve where it says (NlpOutcome::kStagnated), at that iterate.
+TEST(IpoptSolverSolve, AWatchSeesTheVariableOfEachIterateAndCanStopTheSolve) {
+  IpoptSolver solver(disco_yaml_ipopt_options());
+  NlpPoint start;
+  start.z = (Vector(4) << 1.0, 5.0, 5.0, 1.0).finished();
+  for (const int index : {1, 2, 3}) {
+    SCOPED_TRACE("watched x" + std::to_string(index));
+    std::vector<std::pair<int, double>> seen;
+    NlpLimits limits;
+    limits.watch = NlpLimits::Watch{index, [&seen](int iteration, double value) {
+                                      seen.emplace_back(iteration, value);
+                                      return false;
+                                    }};
+    const NlpResult full = solver.solve(Hs071FirstFixed(), start, limits);
+    ASSERT_TRUE(full.converged()) << ipopt_status_name(full.ipopt_status);
+    EXPECT_NEAR(full.objective, 17.0140173, 1e-6);
+    ASSERT_EQ(static_cast<int>(seen.size()), full.iterations + 1) << "iteration 0 and one per iteration";
+    EXPECT_EQ(seen.front().first, 0);
+    EXPECT_NEAR(seen.front().second, start.z[index], 0.05) << "the start, pushed inside its bounds";
+    EXPECT_EQ(seen.back().first, full.iterations);
+    EXPECT_EQ(seen.back().second, full.point.z[index]);
+
+    // Stopped at iteration 3: the answer is the iterate the watch saw there.
+    seen.clear();
+    limits.watch->stop = [&seen](int iteration, double value) {
+      seen.emplace_back(iteration, value);
+      return iteration == 3;
+    };
+    const NlpResult cut = solver.solve(Hs071FirstFixed(), start, limits);
+    EXPECT_EQ(cut.outcome, NlpOutcome::kStagnated) << ipopt_status_name(cut.ipopt_status);
+    EXPECT_EQ(describe(cut.outcome, cut.ipopt_status), "stagnated");
+    EXPECT_EQ(cut.iterations, 3);
+    ASSERT_EQ(seen.size(), 4u);
+    EXPECT_EQ(seen.back().second, cut.point.z[index]);
+    EXPECT_NE(cut.point.z[index], full.point.z[index]);
+  }
+}
+
 // A BarrierStage ends the solve on the barrier path at mu_target, and the next solve without
 // one runs the configured strategy to Ipopt's tol again. For min (x + 1)^2 / 2, x >= 0, the
 // barrier problem min (x + 1)^2 / 2 - mu ln x has its minimum where x + 1 = mu / x:

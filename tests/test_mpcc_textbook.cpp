@@ -775,7 +775,65 @@ TEST_P(MpccFixedObjective, SolvesATightProblemAsTheZetaRuleDoes) {
   EXPECT_NEAR(once.objective, 2.0, 1e-12);
 }
 
+// ElasticSettings::Stagnation: a fixed step's eps that stopped falling far from tight ends the
+// solve (lumped and barrier formulations, which have an eps). On the problem above that cannot
+// be tight (eps = x y >= 1), a rule that looks from iteration 1 at windows of one iteration
+// stops the lumped solve as soon as eps falls by less than a fifth above 0.5: not tight, as the
+// converged solve, in fewer iterations and with a residual as large. Per pair (no eps) and
+// relaxed (its own homotopy) solve as without the rule.
+TEST_P(MpccFixedObjective, AStagnantEpsEndsANotTightSolveEarly) {
+  const auto [form, polish] = GetParam();
+  ElasticSettings s = settings_for(form, polish);
+  s.stagnation = {.after = 1, .window = 1, .level = 0.5, .decrease = 0.2};
+  const ElasticSettings off = settings_for(form, polish);
+  const PolynomialProgram p = fixed_objective_problem(false);
+  IpoptSolver ipopt(disco_yaml_ipopt_settings());
+  ElasticRequest fixed;
+  fixed.objective_fixed = true;
+  ElasticSettings never = off;
+  never.stagnation.after = 0;
+  const MpccResult cut = ElasticSolver(ipopt, s).solve(p, p.initial_point(), fixed);
+  const MpccResult full = ElasticSolver(ipopt, never).solve(p, p.initial_point(), fixed);
+  SCOPED_TRACE("stagnation: " + describe(cut) + "\nwithout: " + describe(full));
+  ASSERT_EQ(full.outcome, NlpOutcome::kConverged);
+  EXPECT_EQ(cut.status, MpccStatus::kElasticNotTight);
+  EXPECT_EQ(full.status, MpccStatus::kElasticNotTight);
+  EXPECT_EQ(cut.nlp_solves, 1);
+  EXPECT_GE(cut.certificate.max_complementarity, 1.0 - 1e-9);
+  if (form == ElasticFormulation::kLumped) {
+    EXPECT_EQ(cut.outcome, NlpOutcome::kStagnated);
+    EXPECT_LT(cut.iterations, full.iterations);
+  } else {
+    EXPECT_EQ(cut.outcome, full.outcome);
+    EXPECT_EQ(cut.iterations, full.iterations);
+    EXPECT_EQ((cut.z - full.z).cwiseAbs().maxCoeff(), 0.0);
+  }
+  // Without objective_fixed (the zeta rule, which raises zeta) the rule never applies.
+  const MpccResult rule = ElasticSolver(ipopt, s).solve(p, p.initial_point());
+  const MpccResult rule_off = ElasticSolver(ipopt, never).solve(p, p.initial_point());
+  EXPECT_EQ(rule.iterations, rule_off.iterations);
+  EXPECT_EQ(rule.nlp_solves, rule_off.nlp_solves);
+}
+
 INSTANTIATE_TEST_SUITE_P(Textbook, MpccFixedObjective, all_form_polish(), form_polish_name);
+
+// The rule itself, on sequences of eps (one value per Ipopt iteration, the last at `iteration`).
+TEST(ElasticStagnation, StopsOnlyAStagnantEpsAboveTheLevelPastTheFirstIterations) {
+  const ElasticSettings::Stagnation rule{.after = 4, .window = 2, .level = 0.1, .decrease = 0.2};
+  const std::vector<double> flat{3.0, 3.0, 3.0, 3.0, 3.0};
+  EXPECT_TRUE(rule.stagnated(4, flat));
+  EXPECT_FALSE(rule.stagnated(3, flat)) << "not before iteration `after`";
+  EXPECT_FALSE(rule.stagnated(4, {3.0, 3.0, 3.0})) << "two windows are needed";
+  // The least of the last window against the least of the one before: 2.5 vs 3.0 is a fall by
+  // 1/6 < 0.2, stagnant; 2.3 vs 3.0 by 0.233, still falling.
+  EXPECT_TRUE(rule.stagnated(4, {9.0, 3.0, 3.1, 2.5, 2.6}));
+  EXPECT_FALSE(rule.stagnated(4, {9.0, 3.0, 3.1, 2.3, 2.6}));
+  EXPECT_TRUE(rule.stagnated(4, {9.0, 3.0, 3.1, 4.0, 5.0})) << "a rising eps is stagnant";
+  EXPECT_FALSE(rule.stagnated(4, {0.09, 0.09, 0.09, 0.09, 0.09})) << "below the level: may still close";
+  EXPECT_FALSE((ElasticSettings::Stagnation{.after = 0, .window = 2, .level = 0.1, .decrease = 0.2})
+                   .stagnated(40, std::vector<double>(40, 3.0)))
+      << "after = 0: never";
+}
 
 // ------------------------------------------------------- warm starts ---
 

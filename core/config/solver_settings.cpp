@@ -156,6 +156,10 @@ ElasticSettings elastic_settings(const Settings& s) {
   e.barrier_ratio = positive(s, "elastic.barrier_ratio");
   e.barrier_sigma_factor = positive(s, "elastic.barrier_sigma_factor");
   e.barrier_sigma_exponent = positive(s, "elastic.barrier_sigma_exponent");
+  e.stagnation.after = integer_at_least(s, "elastic.stagnation.after", 0);
+  e.stagnation.window = integer_at_least(s, "elastic.stagnation.window", 1);
+  e.stagnation.level = positive(s, "elastic.stagnation.level");
+  e.stagnation.decrease = below_one(s, "elastic.stagnation.decrease");
   if (e.formulation == ElasticFormulation::kRelaxed && !e.polish)
     refuse(s, "elastic.polish",
            "formulation relaxed needs polish: its homotopy ends where the relaxation stops "

@@ -55,7 +55,7 @@ namespace {
 // One Ipopt solve's limits under a request (a solve started past the deadline stops at its
 // first iteration).
 NlpLimits limits(const ElasticRequest& request) {
-  return NlpLimits{request.iteration_limit, request.deadline, std::nullopt, {}};
+  return NlpLimits{request.iteration_limit, request.deadline, std::nullopt, {}, std::nullopt};
 }
 bool past(const ElasticRequest& request) {
   return request.deadline && Clock::now() >= *request.deadline;
@@ -170,6 +170,14 @@ MpccResult ElasticSolver::solve_branch(const Mpcc& mpcc, const MpccResult& from,
   return out;
 }
 
+bool ElasticSettings::Stagnation::stagnated(int iteration, const std::vector<double>& eps) const {
+  const int n = static_cast<int>(eps.size());
+  if (after <= 0 || iteration < after || n < 2 * window) return false;
+  const double last = *std::min_element(eps.end() - window, eps.end());
+  const double before = *std::min_element(eps.end() - 2 * window, eps.end() - window);
+  return last > level && last > (1.0 - decrease) * before;
+}
+
 bool ElasticSolver::raise_zeta(double residual, double& previous_residual, double& zeta) const {
   const bool stalled = previous_residual >= 0 && std::abs(residual - previous_residual) <=
                                                      settings_.stall_change * previous_residual;
@@ -185,6 +193,15 @@ bool ElasticSolver::penalty_loop(ElasticNlp& nlp, NlpPoint start, double zeta,
   double previous_residual = -1.0;
   NlpLimits solve_limits = limits(request);
   const bool follow = nlp.formulation() == ElasticFormulation::kBarrier;
+  if (request.objective_fixed && settings_.stagnation.after > 0 && nlp.eps_index() >= 0) {
+    // eps of each regular Ipopt iteration of the current solve (ElasticSettings::Stagnation).
+    solve_limits.watch = NlpLimits::Watch{
+        nlp.eps_index(), [this, eps = std::vector<double>()](int iteration, double value) mutable {
+          if (iteration == 0) eps.clear();
+          eps.push_back(value);
+          return settings_.stagnation.stagnated(iteration, eps);
+        }};
+  }
   if (follow) {
     solve_limits.follow_barrier = [&nlp, this](double mu) {
       const double sigma =
@@ -199,6 +216,10 @@ bool ElasticSolver::penalty_loop(ElasticNlp& nlp, NlpPoint start, double zeta,
     const NlpResult r = ipopt_.solve(nlp, start, solve_limits);
     if (follow) nlp.set_live_relaxation(0.0);  // polish and the certificate see the MPCC
     record(r, follow ? "barrier" : "elastic", zeta);
+    if (r.outcome == NlpOutcome::kStagnated) {  // not tight, as it would have converged
+      out.status = MpccStatus::kElasticNotTight;
+      return true;
+    }
     if (!r.converged()) {
       out.status = unconverged_status(r);
       return false;

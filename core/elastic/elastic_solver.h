@@ -14,6 +14,8 @@
 //      gives, since eps is then already minimal over {T_f <= B}. When the
 //      objective is fixed (ElasticRequest::objective_fixed: T_f = B), eps is
 //      minimal after the first solve whatever zeta, and zeta is never raised;
+//      such a solve whose eps has stopped falling far from tight is ended there, not tight,
+//      as it would end at convergence (ElasticSettings::Stagnation);
 //   With formulation kRelaxed, steps 1-2 are instead a homotopy that follows Ipopt's barrier
 //   (after Leyffer, Lopez-Calva & Nocedal's relaxation; nosnoc's homotopy): the relaxed NLP
 //   (elastic_nlp.h) at sigma = sigma_0, sigma_0 * sigma_factor, ... down to sigma_min, each
@@ -42,6 +44,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/elastic/elastic_nlp.h"
 #include "core/ipopt/ipopt_solver.h"
@@ -88,6 +91,23 @@ struct ElasticSettings {
   // kBarrier only: sigma = factor * mu^exponent at every Ipopt iteration.
   double barrier_sigma_factor = 0.0;
   double barrier_sigma_exponent = 0.0;
+  // A solve with the objective fixed (ElasticRequest::objective_fixed) minimises eps alone;
+  // one whose eps has stopped falling far from tight would end not tight, and only after
+  // many more iterations. It ends there (NlpOutcome::kStagnated, kElasticNotTight as at
+  // convergence; polish is tried as then): from Ipopt iteration `after` on (0: never), when the
+  // least eps of the last `window` iterations is above `level` and less than the fraction
+  // `decrease` below the least eps of the `window` iterations before those. Lumped and
+  // barrier formulations (penalty loop); eps in the model's scaled units.
+  struct Stagnation {
+    int after = 0;
+    int window = 0;
+    double level = 0.0;
+    double decrease = 0.0;
+    // Whether eps, given the values of consecutive Ipopt iterations (the last at `iteration`),
+    // has stagnated.
+    bool stagnated(int iteration, const std::vector<double>& eps) const;
+  };
+  Stagnation stagnation;
 };
 
 // One call's own limits, as data: the solver keeps no per-call state.

@@ -4,6 +4,7 @@
 #include <IpIpoptApplication.hpp>
 #include <IpIpoptCalculatedQuantities.hpp>
 #include <IpIpoptData.hpp>
+#include <IpDenseVector.hpp>
 #include <IpIteratesVector.hpp>
 #include <IpTNLP.hpp>
 #include <spdlog/spdlog.h>
@@ -85,6 +86,18 @@ class TnlpAdapter : public Ipopt::TNLP {
     if (limits_.follow_barrier && mode == Ipopt::RegularMode && data != nullptr &&
         quantities != nullptr && !caught([&] { return follow(iter, data, quantities); }))
       return false;
+    if (limits_.watch && mode == Ipopt::RegularMode && data != nullptr) {
+      bool stop = false;
+      if (!caught([&] {
+            stop = watched_stop(iter, *data);
+            return true;
+          }))
+        return false;
+      if (stop) {
+        stopped_ = NlpOutcome::kStagnated;
+        return false;
+      }
+    }
     if (limits_.iterations > 0 && iter >= limits_.iterations) {
       stopped_ = NlpOutcome::kIterationCap;
       return false;
@@ -111,6 +124,30 @@ class TnlpAdapter : public Ipopt::TNLP {
   }
 
  private:
+  // NlpLimits::watch: the watched variable's value in Ipopt's current iterate. Ipopt's x
+  // leaves out the variables whose bounds are equal (fixed_variable_treatment make_parameter)
+  // unless it fell back to relaxing them, so the position is found from its dimension.
+  bool watched_stop(Index iter, const Ipopt::IpoptData& data) {
+    const auto* x = dynamic_cast<const Ipopt::DenseVector*>(Ipopt::GetRawPtr(data.curr()->x()));
+    DISCO_CHECK(x != nullptr, "Ipopt's x is a dense vector");
+    if (watch_position_ < 0) {  // once per solve
+      const int n = nlp_.num_variables(), k = limits_.watch->index;
+      DISCO_CHECK(k >= 0 && k < n && nlp_.variable_lower()[k] != nlp_.variable_upper()[k],
+                  "a watched variable is a free variable of the NLP");
+      int fixed = 0, fixed_before = 0;
+      for (int j = 0; j < n; ++j) {
+        const bool is_fixed = nlp_.variable_lower()[j] == nlp_.variable_upper()[j];
+        fixed += is_fixed;
+        fixed_before += is_fixed && j < k;
+      }
+      DISCO_CHECK(x->Dim() == n - fixed || x->Dim() == n,
+                  "Ipopt's x is the NLP's, with or without its fixed variables");
+      watch_position_ = x->Dim() == n ? k : k - fixed_before;
+    }
+    const double value = x->IsHomogeneous() ? x->Scalar() : x->Values()[watch_position_];
+    return limits_.watch->stop(static_cast<int>(iter), value);
+  }
+
   // NlpLimits::follow_barrier: the NLP changed at Ipopt's current mu, Ipopt's current iterate
   // is replaced by a copy under new tags (IpoptData keeps everything else: W, mu, tau), so
   // that Ipopt evaluates the new functions there.
@@ -198,6 +235,7 @@ class TnlpAdapter : public Ipopt::TNLP {
   NlpResult& out_;
   const NlpLimits& limits_;
   NlpOutcome stopped_ = NlpOutcome::kFailed;
+  int watch_position_ = -1;  // of NlpLimits::watch's variable in Ipopt's x, once known
   std::exception_ptr error_;
 };
 
@@ -233,13 +271,15 @@ std::string to_string(NlpOutcome outcome) {
     case NlpOutcome::kTimeLimit: return "time limit";
     case NlpOutcome::kMaxIterations: return "max_iter";
     case NlpOutcome::kInvalidNumber: return "invalid number";
+    case NlpOutcome::kStagnated: return "stagnated";
     case NlpOutcome::kFailed: return "failed";
   }
   return "failed";
 }
 
 std::string describe(NlpOutcome outcome, int ipopt_status) {
-  if (outcome == NlpOutcome::kIterationCap || outcome == NlpOutcome::kTimeLimit)
+  if (outcome == NlpOutcome::kIterationCap || outcome == NlpOutcome::kTimeLimit ||
+      outcome == NlpOutcome::kStagnated)
     return to_string(outcome);
   return "Ipopt: " + ipopt_status_name(ipopt_status);
 }

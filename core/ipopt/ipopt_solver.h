@@ -92,6 +92,14 @@ struct NlpLimits {
   // Ipopt's current iterate by a copy (the same values under new tags, so none of Ipopt's
   // cached values of the old functions is used again), and records a BarrierRefresh.
   std::function<bool(double mu)> follow_barrier;
+  // Not a limit on its own: called at every iteration of Ipopt's regular mode with the
+  // iteration and the current value of the NLP's variable `watch.index` (read from Ipopt's
+  // iterate); returning true stops the solve there (NlpOutcome::kStagnated).
+  struct Watch {
+    int index = -1;
+    std::function<bool(int iteration, double value)> stop;
+  };
+  std::optional<Watch> watch;
 };
 
 // One change of the NLP by NlpLimits::follow_barrier, as Ipopt saw it: its iteration, its
@@ -111,10 +119,11 @@ enum class NlpOutcome {
   kTimeLimit,      // stopped at NlpLimits::deadline, or by an interrupt
   kMaxIterations,  // Ipopt's own max_iter
   kInvalidNumber,  // an evaluation failed: NaN, Inf or an error in a callback
+  kStagnated,      // stopped by NlpLimits::watch
   kFailed,         // any other Ipopt status (ipopt_status says which)
 };
 // "converged", "infeasible", "iteration cap", "time limit", "max_iter", "invalid number",
-// "failed".
+// "stagnated", "failed".
 std::string to_string(NlpOutcome outcome);
 
 // What the KKT linear solver did in one solve (core/ipopt/kkt_solver.h).
