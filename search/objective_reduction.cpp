@@ -35,6 +35,7 @@ struct StepRequest {
   Bound bound = Bound::kUpper;
   double value = 0.0;
   int iteration_limit = 0;  // per Ipopt solve; 0 = none
+  bool minimize = false;    // a minimisation (step 3): ElasticSettings::Stall applies
 };
 
 // One run of reduce_objective: its solves, its solve log and its best point. The control flow
@@ -82,6 +83,7 @@ struct Reduction {
     ElasticRequest req = request(q.iteration_limit, reserve);
     // A fixed step fixes J: no zeta raise (objective_reduction.h, "Fixed steps and zeta").
     req.objective_fixed = q.bound == Bound::kFixed;
+    req.stall = q.minimize;
     MpccResult r = solver.solve(problem.program(), from, req);
     note_deadline(req, r);
     return r;
@@ -108,6 +110,7 @@ struct Reduction {
     SolveRecord rec{kind,     bound,        problem.horizon(r.z), problem.objective(r.z),
                     r.status, r.outcome,    r.ipopt_status,       r.certificate,
                     r.nlp_solves, r.iterations, r.seconds,        improved};
+    rec.stalled = r.stalled;
     out.solves.push_back(rec);
     out.nlp_solves += r.nlp_solves;
     out.iterations += r.iterations;
@@ -139,12 +142,14 @@ struct Reduction {
       return true;  // a descent stops at a local optimum, or at the time limit
     }
     const double bound = out.best_value;
-    MpccResult r = step({Bound::kUpper, bound, iteration_limit}, out.best);
+    MpccResult r = step({Bound::kUpper, bound, iteration_limit, true}, out.best);
     const bool improved = r.solved() && problem.objective(r.z) < bound;
     record(SolveKind::kMinimize, bound, r, improved);
-    const bool converged = r.solved();
-    if (improved) take_best(std::move(r), converged, bound);
-    else salvage(r, r.outcome == NlpOutcome::kMaxIterations);
+    // A minimisation ended by the stall rule (elastic.stall) counts as converged for the loop
+    // (a local optimum, probed below), but its point is not shown stationary.
+    const bool converged = r.solved(), stationary = converged && !r.stalled;
+    if (improved) take_best(std::move(r), stationary, bound);
+    else salvage(r, r.outcome == NlpOutcome::kMaxIterations || r.stalled);
     return converged;
   }
 
@@ -260,7 +265,8 @@ std::string solve_outcome_words(MpccStatus status, NlpOutcome outcome) {
 }
 
 std::string solve_log_line(int number, const SolveRecord& r, ObjectiveKind kind) {
-  const std::string words = solve_outcome_words(r.status, r.outcome);
+  const std::string words =
+      solve_outcome_words(r.status, r.outcome) + (r.stalled ? ", stalled" : "");
   // A feasibility phase's bound is its fixed T_f, not a bound on J: "-" for another objective.
   const bool on_J = r.kind != SolveKind::kFeasibility && r.kind != SolveKind::kPerturbedFeasibility;
   const std::string values =

@@ -89,6 +89,11 @@
 //   within reach of a branch: on a refine of paper B3 (start 9 from its screen) three
 //   minimisations each ended at max_iter with complementarity 2e-8-1e-6, and the start took
 //   15,284 iterations to 10.092682 without the salvage.
+// The stall rule (elastic.stall, off by default; core/elastic/elastic_solver.h, Stall). A
+//   minimisation (step 3 and its early call, never a step or a segment) that creeps at a
+//   settled iterate ends there and is judged as if converged; certified, it counts as a local
+//   optimum for the loop (probed below) but its point is not shown stationary
+//   (SolveRecord::stalled); not certified, it is salvaged as at max_iter.
 // Fixed steps and zeta. A fixed step (and a probe) fixes J, so J is constant on its feasible
 //   set and the elastic NLP minimises eps alone, whatever zeta: a fixed step that converges
 //   with complementarity not tight ends there (ElasticRequest::objective_fixed), without the
@@ -152,6 +157,9 @@ struct SolveRecord {
   int nlp_solves = 0, iterations = 0;
   double seconds = 0.0;
   bool improved = false;  // became the new best
+  // A minimisation that the stall rule ended (elastic.stall, ElasticSettings::Stall): even
+  // certified, its point is not shown stationary.
+  bool stalled = false;
   // A solve of the coarse stage of a coarse-to-fine start (search/solve_scene.h): of the
   // scene at fewer steps, so never a best of the start (improved stays false).
   bool coarse = false;
@@ -161,8 +169,8 @@ struct SolveRecord {
 // --verbose`): a header, then one line per elastic-mode solve, numbered from 1:
 // phase ("coarse " before it in a coarse stage), T_f bound and reached (for another
 // objective: J's bound, J and T_f), how it ended in
-// words (solve_outcome_words), certificate, Ipopt solves, iterations and seconds, and "*"
-// for a new best (for a real failure, Ipopt's status in parentheses). The loop's last line, stop_line() (search/reduction_phases.h),
+// words (solve_outcome_words; ", stalled" after them for a minimisation the stall rule ended),
+// certificate, Ipopt solves, iterations and seconds, and "*" for a new best (for a real failure, Ipopt's status in parentheses). The loop's last line, stop_line() (search/reduction_phases.h),
 // says why it stopped.
 std::string solve_log_header(ObjectiveKind kind = ObjectiveKind::kTime);
 std::string solve_log_line(int number, const SolveRecord& r, ObjectiveKind kind = ObjectiveKind::kTime);

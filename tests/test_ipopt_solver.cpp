@@ -539,8 +539,8 @@ TEST(IpoptSolverSolve, AWatchSeesTheVariableOfEachIterateAndCanStopTheSolve) {
     SCOPED_TRACE("watched x" + std::to_string(index));
     std::vector<std::pair<int, double>> seen;
     NlpLimits limits;
-    limits.watch = NlpLimits::Watch{index, [&seen](int iteration, double value) {
-                                      seen.emplace_back(iteration, value);
+    limits.watch = NlpLimits::Watch{index, [&seen](const NlpLimits::Iterate& it) {
+                                      seen.emplace_back(it.iteration, it.value);
                                       return false;
                                     }};
     const NlpResult full = solver.solve(Hs071FirstFixed(), start, limits);
@@ -554,9 +554,9 @@ TEST(IpoptSolverSolve, AWatchSeesTheVariableOfEachIterateAndCanStopTheSolve) {
 
     // Stopped at iteration 3: the answer is the iterate the watch saw there.
     seen.clear();
-    limits.watch->stop = [&seen](int iteration, double value) {
-      seen.emplace_back(iteration, value);
-      return iteration == 3;
+    limits.watch->stop = [&seen](const NlpLimits::Iterate& it) {
+      seen.emplace_back(it.iteration, it.value);
+      return it.iteration == 3;
     };
     const NlpResult cut = solver.solve(Hs071FirstFixed(), start, limits);
     EXPECT_EQ(cut.outcome, NlpOutcome::kStagnated) << ipopt_status_name(cut.ipopt_status);

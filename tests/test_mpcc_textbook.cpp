@@ -835,6 +835,62 @@ TEST(ElasticStagnation, StopsOnlyAStagnantEpsAboveTheLevelPastTheFirstIterations
       << "after = 0: never";
 }
 
+// ElasticSettings::Stall, on (iteration, objective) of settled iterates, the last at `iteration`.
+TEST(ElasticStall, StopsOnlyAtASettledIterateWhoseObjectiveHasCrept) {
+  const ElasticSettings::Stall rule{
+      .after = 10, .window = 5, .decrease = 1e-3, .mu = 1e-10, .infeasibility = 1e-8};
+  using Settled = std::vector<std::pair<int, double>>;
+  // The least of the last 5 iterations (k > 12 - 5) against the least before: 9.995 against
+  // 10.0 is a fall by 5e-4 < 1e-3, crept; 9.98 by 2e-3, still falling.
+  EXPECT_TRUE(rule.stalled(12, Settled{{3, 10.0}, {6, 10.0}, {9, 9.999}, {12, 9.995}}));
+  EXPECT_FALSE(rule.stalled(12, Settled{{3, 10.0}, {6, 10.0}, {9, 9.999}, {12, 9.98}}));
+  EXPECT_TRUE(rule.stalled(12, Settled{{3, 10.0}, {12, 10.5}})) << "a rising objective has crept";
+  EXPECT_FALSE(rule.stalled(9, Settled{{3, 10.0}, {9, 10.0}})) << "not before iteration `after`";
+  EXPECT_FALSE(rule.stalled(12, Settled{{8, 10.0}, {12, 10.0}})) << "nothing settled before the window";
+  EXPECT_FALSE(rule.stalled(13, Settled{{3, 10.0}, {12, 10.0}})) << "only at a settled iterate";
+  EXPECT_FALSE((ElasticSettings::Stall{.after = 0, .window = 5, .decrease = 1e-3, .mu = 1e-10,
+                                       .infeasibility = 1e-8})
+                   .stalled(40, Settled{{3, 10.0}, {40, 10.0}}))
+      << "after = 0: never";
+  // Settled: Ipopt's mu and primal infeasibility both at most the rule's.
+  EXPECT_TRUE(rule.settled({.iteration = 1, .infeasibility = 1e-9, .mu = 1e-11}));
+  EXPECT_FALSE(rule.settled({.iteration = 1, .infeasibility = 1e-9, .mu = 1e-9}));
+  EXPECT_FALSE(rule.settled({.iteration = 1, .infeasibility = 1e-7, .mu = 1e-11}));
+}
+
+// A minimisation (ElasticRequest::stall) that the rule ends is judged as if it had converged:
+// here tight, polished and certified at ExpSqrt's optimum (from (1, 1)), and marked stalled (not
+// shown stationary). Every iterate counts as settled, and a window of one iteration ends the
+// solve at the first iterate from iteration 3 on whose objective is not 1 % below the least
+// before it: another path than the full solve's (its iterations differ), to the same answer.
+// Without ElasticRequest::stall the rule does not apply: the full solve, bit for bit.
+TEST(ElasticStall, EndsAMinimisationAsIfConvergedAndMarksItStalled) {
+  ExpSqrtMpcc m;
+  IpoptSolver ipopt(disco_yaml_ipopt_settings());
+  ElasticSettings s = settings_for(ElasticFormulation::kLumped, true);
+  s.stall = {.after = 3, .window = 1, .decrease = 0.01, .mu = 1.0, .infeasibility = 1.0};
+  ElasticSettings off = s;
+  off.stall.after = 0;
+  const Vector start = (Vector(2) << 1.0, 1.0).finished();
+  ElasticRequest minimise;
+  minimise.stall = true;
+  const MpccResult cut = ElasticSolver(ipopt, s).solve(m, start, minimise);
+  const MpccResult full = ElasticSolver(ipopt, off).solve(m, start, minimise);
+  const MpccResult unasked = ElasticSolver(ipopt, s).solve(m, start);
+  SCOPED_TRACE("stall: " + describe(cut) + "\nwithout: " + describe(full));
+  ASSERT_EQ(full.status, MpccStatus::kSolved);
+  EXPECT_FALSE(full.stalled);
+  EXPECT_EQ(cut.status, MpccStatus::kSolved);
+  EXPECT_TRUE(cut.stalled);
+  EXPECT_TRUE(cut.polished);
+  EXPECT_NE(cut.iterations, full.iterations) << "the rule ended a solve";
+  EXPECT_TRUE(cut.certificate.within(1e-6, 1e-6));
+  EXPECT_NEAR(cut.objective, full.objective, 1e-6);
+  EXPECT_FALSE(unasked.stalled);
+  EXPECT_EQ(unasked.iterations, full.iterations);
+  EXPECT_EQ((unasked.z - full.z).cwiseAbs().maxCoeff(), 0.0);
+}
+
 // ------------------------------------------------------- warm starts ---
 
 class MpccWarmStart : public ::testing::TestWithParam<FormPolish> {};

@@ -259,6 +259,49 @@ TEST(ObjectiveReduction, AnEvaluationFailureIsReportedAndTheNextHorizonIsTried) 
   EXPECT_TRUE(later.best.certificate.within(1e-6, 1e-6));
 }
 
+// A minimisation that the stall rule (elastic.stall) ends counts as a local optimum for the
+// loop (a probe follows, as after one that converged), but even certified its point is not
+// shown stationary, and the solve log says so. Only minimisations are ever stalled. The rule
+// here counts every iterate as settled and ends a minimisation at the first iterate from
+// iteration 5 on whose objective is not 1 % below the least before it.
+TEST(ObjectiveReduction, AStalledMinimisationIsALocalOptimumButNotShownStationary) {
+  const Scene scene = scenario("two_robots_swap_avoid", {"steps=20"});
+  RobotProblem problem(scene);
+  DefaultSolvers d({kIpoptsOwnFactorisations,  // a fixed step fails: a minimisation follows
+                    "elastic.stall.after=5", "elastic.stall.window=1", "elastic.stall.decrease=0.01",
+                    "elastic.stall.mu=1", "elastic.stall.infeasibility=1"});
+  d.schedule.minimizer = Minimizer::kElastic;
+  const ReductionResult result = reduce_objective(problem, d.solver, d.schedule);
+  print(result);
+  ASSERT_TRUE(result.found);
+  int stalled = 0;
+  for (size_t k = 0; k < result.solves.size(); ++k) {
+    const SolveRecord& r = result.solves[k];
+    if (!r.stalled) continue;
+    ++stalled;
+    EXPECT_EQ(r.kind, SolveKind::kMinimize) << "solve " << k;
+    EXPECT_NE(solve_log_line(int(k) + 1, r).find("solved, stalled"), std::string::npos)
+        << solve_log_line(int(k) + 1, r);
+    if (r.status == MpccStatus::kSolved && k + 1 < result.solves.size()) {
+      EXPECT_EQ(result.solves[k + 1].kind, SolveKind::kFixedStep) << "a probe below it";
+      EXPECT_LT(result.solves[k + 1].bound, r.T_f);
+    }
+  }
+  ASSERT_GE(stalled, 1) << "the rule ended no minimisation";
+  const SolveRecord& b = best_solve(result);
+  if (b.stalled) EXPECT_EQ(result.stationarity, Stationarity::kFeasible);
+  // The same scene without the rule: its minimisation converges, and is strongly stationary.
+  DefaultSolvers plain({kIpoptsOwnFactorisations, "elastic.stall.after=0"});
+  plain.schedule.minimizer = Minimizer::kElastic;
+  RobotProblem again(scene);
+  const ReductionResult reference = reduce_objective(again, plain.solver, plain.schedule);
+  for (const SolveRecord& r : reference.solves) EXPECT_FALSE(r.stalled);
+  if (best_solve(result).stalled) {
+    EXPECT_EQ(best_solve(reference).kind, SolveKind::kMinimize);
+    EXPECT_EQ(reference.stationarity, Stationarity::kStrong);
+  }
+}
+
 TEST(ObjectiveReduction, ALocalOptimumEndsTheLoopOnceAProbeBelowItFails) {
   // A minimising step that converges strictly inside its bound, or a
   // `minimize` phase that converges, is a local optimum: at most one fixed

@@ -160,6 +160,11 @@ ElasticSettings elastic_settings(const Settings& s) {
   e.stagnation.window = integer_at_least(s, "elastic.stagnation.window", 1);
   e.stagnation.level = positive(s, "elastic.stagnation.level");
   e.stagnation.decrease = below_one(s, "elastic.stagnation.decrease");
+  e.stall.after = integer_at_least(s, "elastic.stall.after", 0);
+  e.stall.window = integer_at_least(s, "elastic.stall.window", 1);
+  e.stall.decrease = below_one(s, "elastic.stall.decrease");
+  e.stall.mu = positive(s, "elastic.stall.mu");
+  e.stall.infeasibility = positive(s, "elastic.stall.infeasibility");
   if (e.formulation == ElasticFormulation::kRelaxed && !e.polish)
     refuse(s, "elastic.polish",
            "formulation relaxed needs polish: its homotopy ends where the relaxation stops "

@@ -178,6 +178,18 @@ bool ElasticSettings::Stagnation::stagnated(int iteration, const std::vector<dou
   return last > level && last > (1.0 - decrease) * before;
 }
 
+bool ElasticSettings::Stall::stalled(int iteration,
+                                     const std::vector<std::pair<int, double>>& settled) const {
+  if (after <= 0 || iteration < after || settled.empty() || settled.back().first != iteration)
+    return false;
+  double before = kInf, recent = kInf;
+  for (const auto& [k, objective] : settled) {
+    double& least = k > iteration - window ? recent : before;
+    least = std::min(least, objective);
+  }
+  return before < kInf && before - recent < decrease * std::abs(before);
+}
+
 bool ElasticSolver::raise_zeta(double residual, double& previous_residual, double& zeta) const {
   const bool stalled = previous_residual >= 0 && std::abs(residual - previous_residual) <=
                                                      settings_.stall_change * previous_residual;
@@ -196,10 +208,20 @@ bool ElasticSolver::penalty_loop(ElasticNlp& nlp, NlpPoint start, double zeta,
   if (request.objective_fixed && settings_.stagnation.after > 0 && nlp.eps_index() >= 0) {
     // eps of each regular Ipopt iteration of the current solve (ElasticSettings::Stagnation).
     solve_limits.watch = NlpLimits::Watch{
-        nlp.eps_index(), [this, eps = std::vector<double>()](int iteration, double value) mutable {
-          if (iteration == 0) eps.clear();
-          eps.push_back(value);
-          return settings_.stagnation.stagnated(iteration, eps);
+        nlp.eps_index(), [this, eps = std::vector<double>()](const NlpLimits::Iterate& it) mutable {
+          if (it.iteration == 0) eps.clear();
+          eps.push_back(it.value);
+          return settings_.stagnation.stagnated(it.iteration, eps);
+        }};
+  } else if (request.stall && settings_.stall.after > 0) {
+    // The objective at each settled iterate of the current solve (ElasticSettings::Stall).
+    solve_limits.watch = NlpLimits::Watch{
+        -1, [this, settled = std::vector<std::pair<int, double>>()](
+                const NlpLimits::Iterate& it) mutable {
+          if (it.iteration == 0) settled.clear();
+          if (!settings_.stall.settled(it)) return false;
+          settled.emplace_back(it.iteration, it.objective);
+          return settings_.stall.stalled(it.iteration, settled);
         }};
   }
   if (follow) {
@@ -216,11 +238,13 @@ bool ElasticSolver::penalty_loop(ElasticNlp& nlp, NlpPoint start, double zeta,
     const NlpResult r = ipopt_.solve(nlp, start, solve_limits);
     if (follow) nlp.set_live_relaxation(0.0);  // polish and the certificate see the MPCC
     record(r, follow ? "barrier" : "elastic", zeta);
-    if (r.outcome == NlpOutcome::kStagnated) {  // not tight, as it would have converged
-      out.status = MpccStatus::kElasticNotTight;
+    if (r.outcome == NlpOutcome::kStagnated && request.objective_fixed) {
+      out.status = MpccStatus::kElasticNotTight;  // not tight, as it would have converged
       return true;
     }
-    if (!r.converged()) {
+    if (r.outcome == NlpOutcome::kStagnated) {
+      out.stalled = true;  // a minimisation creeping at the corner: judged as if converged
+    } else if (!r.converged()) {
       out.status = unconverged_status(r);
       return false;
     }

@@ -108,6 +108,28 @@ struct ElasticSettings {
     bool stagnated(int iteration, const std::vector<double>& eps) const;
   };
   Stagnation stagnation;
+  // A minimisation (ElasticRequest::stall) that creeps at the corner: Ipopt settled (mu at
+  // most `mu`, primal infeasibility at most `infeasibility`: a settled iterate) while the
+  // objective has moved by less than the fraction `decrease` over the last `window`
+  // iterations. From iteration `after` on (0: never), at a settled iterate, when the least
+  // objective of the settled iterates of the last `window` iterations lies less than
+  // `decrease` times its size below the least of the settled iterates before those, the
+  // solve ends there (NlpOutcome::kStagnated) and is judged as if it had converged: tight,
+  // polish; not tight, the zeta rule. Its point is not shown stationary (MpccResult::stalled).
+  struct Stall {
+    int after = 0;
+    int window = 0;
+    double decrease = 0.0;
+    double mu = 0.0;
+    double infeasibility = 0.0;
+    bool settled(const NlpLimits::Iterate& it) const {
+      return it.mu <= mu && it.infeasibility <= infeasibility;
+    }
+    // Whether the solve has stalled at `iteration`, given the (iteration, objective) of its
+    // settled iterates so far, the current one last.
+    bool stalled(int iteration, const std::vector<std::pair<int, double>>& settled) const;
+  };
+  Stall stall;
 };
 
 // One call's own limits, as data: the solver keeps no per-call state.
@@ -120,6 +142,8 @@ struct ElasticRequest {
   // with complementarity not tight is final: no zeta raise (kElasticNotTight at once; polish
   // is still tried). Without it, the zeta rule of step 2.
   bool objective_fixed = false;
+  // A minimisation: ElasticSettings::Stall ends a solve that creeps at the corner.
+  bool stall = false;
 };
 
 // How well z satisfies the MPCC, in the MPCC's own units.
@@ -146,6 +170,9 @@ struct MpccResult {
   double seconds = 0.0;
   double zeta = 0.0;       // penalty at the end
   bool polished = false;
+  // An elastic solve was ended by ElasticSettings::Stall: even certified, the point is not
+  // shown to be stationary.
+  bool stalled = false;
   NlpPoint elastic_point;  // elastic primal-dual point (before polish), for warm starts
   // solve_branch only: branch solves run, pairs flipped, and whether the end point passed the
   // sign test of every biactive pair (strongly stationary on its branch, hence B-stationary).

@@ -76,8 +76,9 @@ class TnlpAdapter : public Ipopt::TNLP {
     return caught([&] { return hessian(n, x, obj_factor, m, lambda, nele, irow, jcol, values); });
   }
 
-  bool intermediate_callback(Ipopt::AlgorithmMode mode, Index iter, Number, Number, Number,
-                             Number, Number, Number, Number, Number, Index,
+  bool intermediate_callback(Ipopt::AlgorithmMode mode, Index iter, Number obj_value,
+                             Number inf_pr, Number, Number mu, Number, Number, Number, Number,
+                             Index,
                              const Ipopt::IpoptData* data,
                              Ipopt::IpoptCalculatedQuantities* quantities) override {
     out_.iterations = iter;
@@ -89,7 +90,7 @@ class TnlpAdapter : public Ipopt::TNLP {
     if (limits_.watch && mode == Ipopt::RegularMode && data != nullptr) {
       bool stop = false;
       if (!caught([&] {
-            stop = watched_stop(iter, *data);
+            stop = watched_stop({static_cast<int>(iter), std::nan(""), obj_value, inf_pr, mu}, *data);
             return true;
           }))
         return false;
@@ -127,7 +128,8 @@ class TnlpAdapter : public Ipopt::TNLP {
   // NlpLimits::watch: the watched variable's value in Ipopt's current iterate. Ipopt's x
   // leaves out the variables whose bounds are equal (fixed_variable_treatment make_parameter)
   // unless it fell back to relaxing them, so the position is found from its dimension.
-  bool watched_stop(Index iter, const Ipopt::IpoptData& data) {
+  bool watched_stop(NlpLimits::Iterate it, const Ipopt::IpoptData& data) {
+    if (limits_.watch->index < 0) return limits_.watch->stop(it);
     const auto* x = dynamic_cast<const Ipopt::DenseVector*>(Ipopt::GetRawPtr(data.curr()->x()));
     DISCO_CHECK(x != nullptr, "Ipopt's x is a dense vector");
     if (watch_position_ < 0) {  // once per solve
@@ -144,8 +146,8 @@ class TnlpAdapter : public Ipopt::TNLP {
                   "Ipopt's x is the NLP's, with or without its fixed variables");
       watch_position_ = x->Dim() == n ? k : k - fixed_before;
     }
-    const double value = x->IsHomogeneous() ? x->Scalar() : x->Values()[watch_position_];
-    return limits_.watch->stop(static_cast<int>(iter), value);
+    it.value = x->IsHomogeneous() ? x->Scalar() : x->Values()[watch_position_];
+    return limits_.watch->stop(it);
   }
 
   // NlpLimits::follow_barrier: the NLP changed at Ipopt's current mu, Ipopt's current iterate

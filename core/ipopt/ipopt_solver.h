@@ -92,12 +92,20 @@ struct NlpLimits {
   // Ipopt's current iterate by a copy (the same values under new tags, so none of Ipopt's
   // cached values of the old functions is used again), and records a BarrierRefresh.
   std::function<bool(double mu)> follow_barrier;
-  // Not a limit on its own: called at every iteration of Ipopt's regular mode with the
-  // iteration and the current value of the NLP's variable `watch.index` (read from Ipopt's
-  // iterate); returning true stops the solve there (NlpOutcome::kStagnated).
+  // Not a limit on its own: called at every iteration of Ipopt's regular mode with what
+  // Ipopt reports of the iterate (its intermediate callback's values) and the current value
+  // of the NLP's variable `watch.index` (read from Ipopt's iterate; index < 0: none);
+  // returning true stops the solve there (NlpOutcome::kStagnated).
+  struct Iterate {
+    int iteration = 0;
+    double value = 0.0;           // the watched variable (NaN without one)
+    double objective = 0.0;       // the NLP's objective (Ipopt's unscaled f)
+    double infeasibility = 0.0;   // Ipopt's primal infeasibility (its log's inf_pr)
+    double mu = 0.0;              // Ipopt's barrier parameter
+  };
   struct Watch {
     int index = -1;
-    std::function<bool(int iteration, double value)> stop;
+    std::function<bool(const Iterate&)> stop;
   };
   std::optional<Watch> watch;
 };

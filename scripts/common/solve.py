@@ -13,10 +13,11 @@ from typing import Optional
 # One line of the solve log (search/objective_reduction.cpp, solve_log_line):
 #   "  3 reduction      8.27916    8.27916 not tight           7.0e-02   1.1e-15    6    41   0.210"
 # number, phase (may hold a space), bound, T_f, how it ended (one or two words: solved, not
-# tight, cap reached, max_iter, ...), compl, viol, NLP solves, iterations, seconds; then
+# tight, cap reached, max_iter, ...; ", stalled" after them for a minimisation the stall rule
+# ended), compl, viol, NLP solves, iterations, seconds; then
 # optionally "*" or "(Ipopt: ...)".
 SOLVE_LINE = re.compile(
-    r"^\s*(\d+)\s+([a-z][a-z -]*?)\s+(\S+)\s+(\S+)\s+([a-z_]+(?: [a-z_]+)?)\s+(\S+)\s+(\S+)"
+    r"^\s*(\d+)\s+([a-z][a-z -]*?)\s+(\S+)\s+(\S+)\s+([a-z_]+(?: [a-z_]+)?(?:, stalled)?)\s+(\S+)\s+(\S+)"
     r"\s+(\d+)\s+(\d+)\s+([\d.]+)\b")
 
 
