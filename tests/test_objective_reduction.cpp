@@ -289,7 +289,9 @@ TEST(ObjectiveReduction, AStalledMinimisationIsALocalOptimumButNotShownStationar
   }
   ASSERT_GE(stalled, 1) << "the rule ended no minimisation";
   const SolveRecord& b = best_solve(result);
-  if (b.stalled) EXPECT_EQ(result.stationarity, Stationarity::kFeasible);
+  if (b.stalled) {
+    EXPECT_EQ(result.stationarity, Stationarity::kFeasible);
+  }
   // The same scene without the rule: its minimisation converges, and is strongly stationary.
   DefaultSolvers plain({kIpoptsOwnFactorisations, "elastic.stall.after=0"});
   plain.schedule.minimizer = Minimizer::kElastic;
