@@ -84,6 +84,7 @@ struct Reduction {
     // A fixed step fixes J: no zeta raise (objective_reduction.h, "Fixed steps and zeta").
     req.objective_fixed = q.bound == Bound::kFixed;
     req.stall = q.minimize;
+    req.cold_start = q.minimize && cfg.cold_minimize;  // (objective_reduction.h, "Minimisations")
     MpccResult r = solver.solve(problem.program(), from, req);
     note_deadline(req, r);
     return r;

@@ -94,6 +94,14 @@
 //   settled iterate ends there and is judged as if converged; certified, it counts as a local
 //   optimum for the loop (probed below) but its point is not shown stationary
 //   (SolveRecord::stalled); not certified, it is salvaged as at max_iter.
+// Minimisations (reduction.minimize_duals, kElastic; step 3 and its early call, never a step,
+//   segment or salvage). A minimisation starts from the best point, the optimum of a fixed step
+//   (or of the feasibility phase), and travels far: paper B2 start 1 from T_f 13.87 to 10.14.
+//   Warm-started from that point's multipliers its barrier begins near zero, and Ipopt
+//   creeps along the boundary (core/README.md, "The iterations of one start"). `cold`: it
+//   starts from the best point's primal values only, with Ipopt's own initial multipliers,
+//   bound push and mu (ElasticRequest::cold_start); its zeta rule's raises and polish are
+//   warm-started as always. `warm`: from the multipliers too.
 // Fixed steps and zeta. A fixed step (and a probe) fixes J, so J is constant on its feasible
 //   set and the elastic NLP minimises eps alone, whatever zeta: a fixed step that converges
 //   with complementarity not tight ends there (ElasticRequest::objective_fixed), without the

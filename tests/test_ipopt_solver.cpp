@@ -572,12 +572,18 @@ TEST(IpoptSolverSolve, AWatchSeesTheVariableOfEachIterateAndCanStopTheSolve) {
 // one runs the configured strategy to Ipopt's tol again. For min (x + 1)^2 / 2, x >= 0, the
 // barrier problem min (x + 1)^2 / 2 - mu ln x has its minimum where x + 1 = mu / x:
 // x = (sqrt(1 + 4 mu) - 1) / 2 (up to Ipopt's damping, below).
-TEST(IpoptSolverSolve, ABarrierStageStopsOnTheBarrierPathAtItsTarget) {
+// min (x + 1)^2 / 2 over x >= 0, from x = x0: its minimum is on the bound, x = 0.
+PolynomialProgram shifted_square(double x0) {
   PolynomialProgram p;
-  p.add_variable(0.0, kInf, 1.0);
+  p.add_variable(0.0, kInf, x0);
   const Affine x1 = Affine::variable(0) + Affine(1.0);
   p.add(PolynomialProgram::kObjective, 0.5, x1, x1);
   p.finalize();
+  return p;
+}
+
+TEST(IpoptSolverSolve, ABarrierStageStopsOnTheBarrierPathAtItsTarget) {
+  const PolynomialProgram p = shifted_square(1.0);
   IpoptSolver solver(disco_yaml_ipopt_options());
   NlpPoint start;
   start.z = p.initial_point();
@@ -594,6 +600,34 @@ TEST(IpoptSolverSolve, ABarrierStageStopsOnTheBarrierPathAtItsTarget) {
   const NlpResult full = solver.solve(p, start);
   ASSERT_TRUE(full.converged());
   EXPECT_LT(full.point.z[0], 1e-8);
+}
+
+// NlpLimits::push_as_warm: a start without duals on its bound is pushed inside by the
+// warm-start push (configs/disco.yaml: ipopt.warm_start_bound_push 1e-3), not by Ipopt's
+// cold bound_push (its default, 1e-2), as Ipopt's first iterate shows; a start with duals is
+// warm anyway, and the next solve without the flag is pushed as configured again.
+TEST(IpoptSolverSolve, PushAsWarmPushesAColdStartOnlyAsFarAsAWarmStart) {
+  const PolynomialProgram p = shifted_square(0.0);
+  IpoptSolver solver(disco_yaml_ipopt_options());
+  NlpPoint start;
+  start.z = p.initial_point();
+  ASSERT_EQ(start.z[0], 0.0);
+  auto first_iterate = [&](bool push_as_warm) {
+    double x0 = -1.0;
+    NlpLimits limits;
+    limits.push_as_warm = push_as_warm;
+    limits.watch = NlpLimits::Watch{0, [&x0](const NlpLimits::Iterate& it) {
+                                      if (it.iteration == 0) x0 = it.value;
+                                      return false;
+                                    }};
+    const NlpResult r = solver.solve(p, start, limits);
+    EXPECT_TRUE(r.converged()) << ipopt_status_name(r.ipopt_status);
+    EXPECT_LT(r.point.z[0], 1e-8);
+    return x0;
+  };
+  EXPECT_DOUBLE_EQ(first_iterate(false), 1e-2) << "Ipopt's bound_push";
+  EXPECT_DOUBLE_EQ(first_iterate(true), 1e-3) << "ipopt.warm_start_bound_push";
+  EXPECT_DOUBLE_EQ(first_iterate(false), 1e-2) << "the configured push again";
 }
 
 }  // namespace

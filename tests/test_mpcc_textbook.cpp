@@ -932,5 +932,39 @@ TEST_P(MpccWarmStart, AfterTighteningABound) {
 
 INSTANTIATE_TEST_SUITE_P(Textbook, MpccWarmStart, all_form_polish(), form_polish_name);
 
+// ElasticRequest::cold_start: from a result, only its primal point is used. Its multipliers are
+// not read at all (the same solve bit for bit with them scaled by 10, which moves a warm start),
+// Ipopt starts cold (other iterations than the warm start's), and the answer is the optimum.
+TEST(MpccColdStart, FromAResultUsesItsPrimalPointOnly) {
+  ExpSqrtMpcc m;
+  IpoptSolver ipopt(disco_yaml_ipopt_settings());
+  ElasticSolver solver(ipopt, settings_for(ElasticFormulation::kLumped, true));
+  const MpccResult first = solver.solve(m, (Vector(2) << 1.0, 1.0).finished());
+  ASSERT_EQ(first.status, MpccStatus::kSolved) << describe(first);
+  ASSERT_TRUE(first.elastic_point.has_duals());
+  m.set_variable_bounds(0, -10.0, 0.7);  // the optimum moves to (0.7, ln 3)
+  const auto [f_ref, z_ref] = exp_sqrt_reference(0.7);
+  MpccResult scaled = first;  // the same primal point, other multipliers
+  scaled.elastic_point.lambda *= 10.0;
+  scaled.elastic_point.z_lo *= 10.0;
+  scaled.elastic_point.z_hi *= 10.0;
+  ElasticRequest cold;
+  cold.cold_start = true;
+  const MpccResult a = solver.solve(m, first, cold);
+  const MpccResult b = solver.solve(m, scaled, cold);
+  const MpccResult warm = solver.solve(m, first);
+  const MpccResult warm_scaled = solver.solve(m, scaled);
+  SCOPED_TRACE("cold: " + describe(a) + "\nwarm: " + describe(warm) +
+               "\nwarm, scaled multipliers: " + describe(warm_scaled));
+  ASSERT_EQ(a.status, MpccStatus::kSolved);
+  EXPECT_NEAR(a.objective, f_ref, 1e-6);
+  EXPECT_NEAR(a.z[0], z_ref[0], 1e-4);
+  EXPECT_NEAR(a.z[1], z_ref[1], 1e-4);
+  EXPECT_EQ(a.iterations, b.iterations);
+  EXPECT_EQ((a.z - b.z).cwiseAbs().maxCoeff(), 0.0) << "the multipliers were read";
+  EXPECT_NE(warm.iterations, warm_scaled.iterations) << "a warm start reads them";
+  EXPECT_NE(a.iterations, warm.iterations) << "started as the warm start";
+}
+
 }  // namespace
 }  // namespace disco

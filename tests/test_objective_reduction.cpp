@@ -304,6 +304,41 @@ TEST(ObjectiveReduction, AStalledMinimisationIsALocalOptimumButNotShownStationar
   }
 }
 
+// reduction.minimize_duals: a minimisation starts cold (Ipopt's own initial multipliers) or
+// warm. Only minimisations: every solve before the first one is the same bit for bit; the
+// minimisation then takes another path (other iterations), and both ways the loop ends at a
+// certified, strongly stationary point.
+TEST(ObjectiveReduction, OnlyTheMinimisationsStartCold) {
+  const Scene scene = scenario("two_robots_swap_avoid", {"steps=20"});
+  ReductionResult results[2];
+  const char* const duals[2] = {"reduction.minimize_duals=cold", "reduction.minimize_duals=warm"};
+  for (int k = 0; k < 2; ++k) {
+    RobotProblem problem(scene);
+    DefaultSolvers d({kIpoptsOwnFactorisations, duals[k]});  // a fixed step fails: a minimisation follows
+    d.schedule.minimizer = Minimizer::kElastic;
+    EXPECT_EQ(d.schedule.cold_minimize, k == 0);
+    results[k] = reduce_objective(problem, d.solver, d.schedule);
+    std::printf("%s\n", duals[k]);
+    print(results[k]);
+    ASSERT_TRUE(results[k].found);
+    EXPECT_EQ(results[k].stationarity, Stationarity::kStrong);
+  }
+  const ReductionResult &cold = results[0], &warm = results[1];
+  size_t first = 0;
+  while (first < cold.solves.size() && cold.solves[first].kind != SolveKind::kMinimize) ++first;
+  ASSERT_LT(first, cold.solves.size()) << "no minimisation";
+  ASSERT_LT(first, warm.solves.size());
+  for (size_t k = 0; k < first; ++k) {
+    EXPECT_EQ(cold.solves[k].kind, warm.solves[k].kind) << "solve " << k;
+    EXPECT_EQ(cold.solves[k].iterations, warm.solves[k].iterations) << "solve " << k;
+    EXPECT_EQ(cold.solves[k].T_f, warm.solves[k].T_f) << "solve " << k;
+  }
+  EXPECT_EQ(warm.solves[first].kind, SolveKind::kMinimize);
+  EXPECT_EQ(cold.solves[first].bound, warm.solves[first].bound);
+  EXPECT_NE(cold.solves[first].iterations, warm.solves[first].iterations)
+      << "the minimisation started as the warm one";
+}
+
 TEST(ObjectiveReduction, ALocalOptimumEndsTheLoopOnceAProbeBelowItFails) {
   // A minimising step that converges strictly inside its bound, or a
   // `minimize` phase that converges, is a local optimum: at most one fixed
@@ -695,7 +730,7 @@ TEST(ObjectiveReductionSalvage, ASolveCutByTheTimeLimitIsSalvagedOnItsBranch) {
   cut.salvage_iterations = d.schedule.salvage_iterations;
   ReductionResult result;
   double salvage_limit = 0.0;
-  for (double fraction : {1.0 / 3.0, 0.5, 2.0 / 3.0, 0.8}) {
+  for (double fraction : {1.0 / 3.0, 0.5, 2.0 / 3.0, 0.8, 0.9, 0.95}) {
     size_t k = 0;
     cut.time_limit = salvage_limit = limit_at(fraction, k);
     result = reduce_objective(problem, d.solver, cut);

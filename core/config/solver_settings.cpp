@@ -186,6 +186,7 @@ ReductionSettings reduction_settings(const Settings& s) {
   r.max_solves = integer_at_least(s, "reduction.max_solves", 0);
   r.step_iterations = integer_at_least(s, "reduction.step_iterations", 1);
   r.minimize_iterations = integer_at_least(s, "reduction.minimize_iterations", 0);
+  r.cold_minimize = choice<bool>(s, "reduction.minimize_duals", {{"cold", true}, {"warm", false}});
   r.minimizer = choice<Minimizer>(s, "reduction.minimize",
                                   {{"elastic", Minimizer::kElastic}, {"branch", Minimizer::kBranch}});
   r.flip_rounds = integer_at_least(s, "reduction.flip_rounds", 0);

@@ -54,6 +54,9 @@ struct ReductionSettings {
   int step_iterations = 0;  // cap on a minimising step before switching to fixed
                             // steps; kBranch: also Ipopt iterations per elastic segment
   int minimize_iterations = 0;  // kElastic: cap on the early minimisation (step 3); 0 = none
+  // kElastic: a minimisation starts from the best point's primal values only, its duals cold
+  // (ElasticRequest::cold_start); false: from its multipliers too.
+  bool cold_minimize = false;
   int flip_rounds = 0;      // kBranch: at most this many rounds of flips per branch descent
   double time_limit = 0.0;  // s; 0 = none
   // Under a time limit: a step or minimisation cut by it has its point polished on its branch

@@ -55,7 +55,9 @@ namespace {
 // One Ipopt solve's limits under a request (a solve started past the deadline stops at its
 // first iteration).
 NlpLimits limits(const ElasticRequest& request) {
-  return NlpLimits{request.iteration_limit, request.deadline, std::nullopt, {}, std::nullopt};
+  NlpLimits l{request.iteration_limit, request.deadline, std::nullopt, {}, std::nullopt};
+  l.push_as_warm = request.cold_start;  // only its first solve starts without duals
+  return l;
 }
 bool past(const ElasticRequest& request) {
   return request.deadline && Clock::now() >= *request.deadline;
@@ -76,7 +78,13 @@ MpccResult ElasticSolver::solve(const Mpcc& mpcc, const ConstVectorRef& z0,
 
 MpccResult ElasticSolver::solve(const Mpcc& mpcc, const MpccResult& warm,
                                 const ElasticRequest& request) const {
-  return run(mpcc, warm.elastic_point, warm.zeta > 0 ? warm.zeta : settings_.zeta, request);
+  const double zeta = warm.zeta > 0 ? warm.zeta : settings_.zeta;
+  if (request.cold_start) {  // the primal point alone: IpoptSolver then starts cold
+    NlpPoint primal;
+    primal.z = warm.elastic_point.z;
+    return run(mpcc, std::move(primal), zeta, request);
+  }
+  return run(mpcc, warm.elastic_point, zeta, request);
 }
 
 MpccResult ElasticSolver::solve_branch(const Mpcc& mpcc, const MpccResult& from,

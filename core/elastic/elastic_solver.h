@@ -144,6 +144,13 @@ struct ElasticRequest {
   bool objective_fixed = false;
   // A minimisation: ElasticSettings::Stall ends a solve that creeps at the corner.
   bool stall = false;
+  // From a warm result (solve(mpcc, warm, ...)): start from its primal point only, with
+  // Ipopt's own initial multipliers and barrier parameter (a cold start; the point pushed
+  // inside its bounds as a warm start is, NlpLimits::push_as_warm), for a solve that travels
+  // far from that point (the reduction's minimisations, reduction.minimize_duals). Its zeta
+  // is still reused, and the solves after the first (zeta raises, polish) are warm-started as
+  // always.
+  bool cold_start = false;
 };
 
 // How well z satisfies the MPCC, in the MPCC's own units.

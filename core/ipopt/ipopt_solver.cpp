@@ -310,6 +310,11 @@ std::string ipopt_status_name(int status) {
   }
 }
 
+// Ipopt's options that push a cold start inside its bounds; "warm_start_" + each is its
+// warm-start counterpart.
+constexpr const char* kColdPushes[] = {"bound_push", "bound_frac", "slack_bound_push",
+                                       "slack_bound_frac"};
+
 struct IpoptSolver::Application {
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app = new Ipopt::IpoptApplication();
 };
@@ -371,6 +376,10 @@ IpoptSolver::IpoptSolver(const std::vector<IpoptOption>& options)
   list->GetNumericValue("mu_init", mu_init_, "");
   list->GetNumericValue("mu_target", mu_target_, "");
   list->GetNumericValue("tol", tol_, "");
+  for (int k = 0; k < kPushes; ++k) {
+    list->GetNumericValue(kColdPushes[k], cold_push_[k], "");
+    list->GetNumericValue(std::string("warm_start_") + kColdPushes[k], warm_push_[k], "");
+  }
 }
 
 IpoptSolver::~IpoptSolver() = default;
@@ -392,6 +401,9 @@ NlpResult IpoptSolver::solve(const Nlp& nlp, const NlpPoint& start, const NlpLim
   app->Options()->SetNumericValue("mu_init", stage.mu_init > 0 ? stage.mu_init : mu_init_);
   app->Options()->SetNumericValue("mu_target", stage.mu_target);
   app->Options()->SetNumericValue("tol", std::max(stage.tol, tol_));
+  for (int k = 0; k < kPushes; ++k)
+    app->Options()->SetNumericValue(
+        kColdPushes[k], limits.push_as_warm && !start.has_duals() ? warm_push_[k] : cold_push_[k]);
   auto* adapter = new TnlpAdapter(nlp, start, out, limits);
   Ipopt::SmartPtr<Ipopt::TNLP> tnlp = adapter;
   const KktOptions kkt{perturbed_first_, !(warm_start_ && start.has_duals()), kkt_solver_, ldlt_,

@@ -108,6 +108,12 @@ struct NlpLimits {
     std::function<bool(const Iterate&)> stop;
   };
   std::optional<Watch> watch;
+  // Not a limit: a start without duals (Ipopt then starts cold: its own initial multipliers and
+  // mu) is pushed inside its bounds as a warm start is (the configured warm_start_bound_push,
+  // warm_start_bound_frac, warm_start_slack_bound_push and warm_start_slack_bound_frac) instead
+  // of by bound_push, bound_frac, slack_bound_push and slack_bound_frac. For a cold start from a
+  // converged point (ElasticRequest::cold_start), which stays that near its corner.
+  bool push_as_warm = false;
 };
 
 // One change of the NLP by NlpLimits::follow_barrier, as Ipopt saw it: its iteration, its
@@ -206,6 +212,10 @@ class IpoptSolver {
   // The configured barrier options, restored after a solve with a BarrierStage.
   std::string mu_strategy_;
   double mu_init_ = 0.0, mu_target_ = 0.0, tol_ = 0.0;
+  // Ipopt's cold-start pushes (bound_push, bound_frac, slack_bound_push, slack_bound_frac) and
+  // their warm-start counterparts, as configured (NlpLimits::push_as_warm).
+  static constexpr int kPushes = 4;
+  double cold_push_[kPushes] = {}, warm_push_[kPushes] = {};
 };
 
 }  // namespace disco
