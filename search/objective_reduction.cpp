@@ -36,6 +36,8 @@ struct StepRequest {
   double value = 0.0;
   int iteration_limit = 0;  // per Ipopt solve; 0 = none
   bool minimize = false;    // a minimisation (step 3): ElasticSettings::Stall applies
+  double zeta = 0.0;        // > 0: ElasticRequest::zeta
+  double zeta_limit = 0.0;  // > 0: ElasticRequest::zeta_limit
 };
 
 // One run of reduce_objective: its solves, its solve log and its best point. The control flow
@@ -85,6 +87,8 @@ struct Reduction {
     req.objective_fixed = q.bound == Bound::kFixed;
     req.stall = q.minimize;
     req.cold_start = q.minimize && cfg.cold_minimize;  // (objective_reduction.h, "Minimisations")
+    req.zeta = q.zeta;
+    req.zeta_limit = q.zeta_limit;
     MpccResult r = solver.solve(problem.program(), from, req);
     note_deadline(req, r);
     return r;
@@ -143,7 +147,23 @@ struct Reduction {
       return true;  // a descent stops at a local optimum, or at the time limit
     }
     const double bound = out.best_value;
-    MpccResult r = step({Bound::kUpper, bound, iteration_limit, true}, out.best);
+    const double zeta = out.best.zeta > 0 ? out.best.zeta : solver.settings().zeta;
+    MpccResult r;
+    if (cfg.minimize_zeta > 0 && cfg.minimize_zeta < zeta) {
+      // Weak first (objective_reduction.h, "Minimisations"); not certified, as before, unless
+      // a limit ended it (the clock, an interrupt, the early minimisation's cap).
+      r = step({Bound::kUpper, bound, iteration_limit, true, cfg.minimize_zeta,
+                zeta * solver.settings().zeta_factor},
+               out.best);
+      const bool limited =
+          time_up || interrupt_requested() || r.outcome == NlpOutcome::kIterationCap;
+      if (!r.solved() && !limited) {
+        record(SolveKind::kMinimize, bound, r, false);
+        r = step({Bound::kUpper, bound, iteration_limit, true}, out.best);
+      }
+    } else {
+      r = step({Bound::kUpper, bound, iteration_limit, true}, out.best);
+    }
     const bool improved = r.solved() && problem.objective(r.z) < bound;
     record(SolveKind::kMinimize, bound, r, improved);
     // A minimisation ended by the stall rule (elastic.stall) counts as converged for the loop

@@ -671,6 +671,38 @@ TEST_P(MpccZetaRule, StallRuleStopsEarlyWhenTheResidualDoesNotMove) {
   EXPECT_DOUBLE_EQ(full.zeta, 1e6);
 }
 
+// ElasticRequest::zeta and zeta_limit (the reduction's weak minimisations): the request's zeta
+// replaces a warm result's (here 10, where zeta_problem() is solved at once) and the settings'
+// from a point; its limit stops the raises below the settings' zeta_max.
+TEST_P(MpccZetaRule, ARequestsZetaAndLimitReplaceTheWarmResultsAndZetaMax) {
+  const auto [form, polish] = GetParam();
+  const auto p = zeta_problem();
+  IpoptSolver ipopt(disco_yaml_ipopt_settings());
+  ElasticSettings s = settings_for(form, polish);  // zeta 10, factor 10, max 1e6
+  s.stall_change = kNoStall;
+  const ElasticSolver solver(ipopt, s);
+  const MpccResult first = solver.solve(p, p.initial_point());
+  ASSERT_EQ(first.status, MpccStatus::kSolved) << describe(first);
+  ASSERT_DOUBLE_EQ(first.zeta, 10.0);
+  ElasticRequest weak;
+  weak.zeta = 1e-3;
+  const MpccResult raised = solver.solve(p, first, weak);
+  const MpccResult from_point = solver.solve(p, p.initial_point(), weak);
+  weak.zeta_limit = 1e-2;
+  const MpccResult limited = solver.solve(p, first, weak);
+  SCOPED_TRACE("raised: " + describe(raised) + "\nfrom a point: " + describe(from_point) +
+               "\nlimited: " + describe(limited));
+  for (const MpccResult* r : {&raised, &from_point}) {
+    ASSERT_EQ(r->status, MpccStatus::kSolved);
+    EXPECT_DOUBLE_EQ(r->zeta, 1.0);  // 1e-3, 1e-2, 1e-1 too small (the threshold is 1/2), 1
+    EXPECT_GE(r->nlp_solves, 4);
+    EXPECT_NEAR(r->objective, 1.0, 1e-6);
+  }
+  EXPECT_EQ(limited.status, MpccStatus::kElasticNotTight);
+  EXPECT_DOUBLE_EQ(limited.zeta, 1e-2);  // 1e-3, 1e-2; 1e-1 would pass the limit
+  EXPECT_EQ(limited.nlp_solves, 2);
+}
+
 INSTANTIATE_TEST_SUITE_P(Textbook, MpccZetaRule, penalty_form_polish(), form_polish_name);
 
 // The relaxation homotopy raises zeta only while the relaxation has never held: at

@@ -267,9 +267,12 @@ TEST(ObjectiveReduction, AnEvaluationFailureIsReportedAndTheNextHorizonIsTried) 
 TEST(ObjectiveReduction, AStalledMinimisationIsALocalOptimumButNotShownStationary) {
   const Scene scene = scenario("two_robots_swap_avoid", {"steps=20"});
   RobotProblem problem(scene);
+  // The rule on the minimisation itself: no weak attempt before it (reduction.minimize_zeta,
+  // whose attempt the rule may end too: AMinimisationStartsWeakAndFallsBackUncertified).
   DefaultSolvers d({kIpoptsOwnFactorisations,  // a fixed step fails: a minimisation follows
                     "elastic.stall.after=5", "elastic.stall.window=1", "elastic.stall.decrease=0.01",
-                    "elastic.stall.mu=1", "elastic.stall.infeasibility=1"});
+                    "elastic.stall.mu=1", "elastic.stall.infeasibility=1",
+                    "reduction.minimize_zeta=0"});
   d.schedule.minimizer = Minimizer::kElastic;
   const ReductionResult result = reduce_objective(problem, d.solver, d.schedule);
   print(result);
@@ -337,6 +340,60 @@ TEST(ObjectiveReduction, OnlyTheMinimisationsStartCold) {
   EXPECT_EQ(cold.solves[first].bound, warm.solves[first].bound);
   EXPECT_NE(cold.solves[first].iterations, warm.solves[first].iterations)
       << "the minimisation started as the warm one";
+}
+
+// reduction.minimize_zeta: a minimisation first runs at the weak zeta, raised at most to the
+// best point's zeta times zeta_factor; uncertified, it runs again as without. Here the start's
+// zeta is 10 (elastic.zeta):
+// - 1000 (not below 10) changes nothing, bit for bit;
+// - 1: every solve before the first minimisation is the same, the minimisation takes another
+//   path, and the loop ends certified and strongly stationary;
+// - 1e-9: the weak attempt ends uncertified (not tight: its raises, at most to 10 times 10,
+//   end first), and the minimisation then runs as without, bit for bit.
+TEST(ObjectiveReduction, AMinimisationStartsWeakAndFallsBackUncertified) {
+  const Scene scene = scenario("two_robots_swap_avoid", {"steps=20"});
+  const char* const weak[4] = {"reduction.minimize_zeta=0", "reduction.minimize_zeta=1000",
+                               "reduction.minimize_zeta=1", "reduction.minimize_zeta=1e-9"};
+  ReductionResult results[4];
+  for (int k = 0; k < 4; ++k) {
+    RobotProblem problem(scene);
+    DefaultSolvers d({kIpoptsOwnFactorisations, "elastic.zeta=10", weak[k]});
+    d.schedule.minimizer = Minimizer::kElastic;
+    results[k] = reduce_objective(problem, d.solver, d.schedule);
+    std::printf("%s\n", weak[k]);
+    print(results[k]);
+    ASSERT_TRUE(results[k].found) << weak[k];
+  }
+  const ReductionResult &off = results[0], &above = results[1], &one = results[2],
+                        &tiny = results[3];
+  auto first_minimisation = [](const ReductionResult& r) {
+    size_t k = 0;
+    while (k < r.solves.size() && r.solves[k].kind != SolveKind::kMinimize) ++k;
+    return k;
+  };
+  auto same = [](const SolveRecord& a, const SolveRecord& b) {
+    return a.kind == b.kind && a.iterations == b.iterations && a.T_f == b.T_f &&
+           a.status == b.status;
+  };
+  const size_t first = first_minimisation(off);
+  ASSERT_LT(first, off.solves.size()) << "no minimisation";
+  ASSERT_EQ(above.solves.size(), off.solves.size());
+  for (size_t k = 0; k < off.solves.size(); ++k)
+    EXPECT_TRUE(same(above.solves[k], off.solves[k])) << "zeta 1000, solve " << k;
+  EXPECT_EQ(above.best_value, off.best_value);
+
+  ASSERT_EQ(first_minimisation(one), first);
+  for (size_t k = 0; k < first; ++k) EXPECT_TRUE(same(one.solves[k], off.solves[k])) << k;
+  EXPECT_NE(one.solves[first].iterations, off.solves[first].iterations) << "not weak";
+  EXPECT_EQ(one.stationarity, Stationarity::kStrong);
+
+  ASSERT_EQ(first_minimisation(tiny), first);
+  ASSERT_LT(first + 1, tiny.solves.size());
+  for (size_t k = 0; k < first; ++k) EXPECT_TRUE(same(tiny.solves[k], off.solves[k])) << k;
+  EXPECT_NE(tiny.solves[first].status, MpccStatus::kSolved) << "the weak attempt";
+  EXPECT_FALSE(tiny.solves[first].improved);
+  EXPECT_EQ(tiny.solves[first + 1].bound, off.solves[first].bound);
+  EXPECT_TRUE(same(tiny.solves[first + 1], off.solves[first])) << "the fallback: as without";
 }
 
 TEST(ObjectiveReduction, ALocalOptimumEndsTheLoopOnceAProbeBelowItFails) {
@@ -409,8 +466,11 @@ TEST(ObjectiveReduction, ACappedEarlyMinimisationHandsBackToTheFixedSteps) {
   // reduction.minimize_iterations caps the minimisation after the first failed
   // fixed step; cut short, it leaves the best point as it was, the fixed steps
   // go on, and the loop minimises again, uncapped, at its end.
+  // Without weak attempts (reduction.minimize_zeta), so that each minimisation is one record
+  // (a weak attempt that the cap ends is not followed by another).
   RobotProblem problem(scenario("two_robots_swap_avoid", {"steps=20"}));
-  DefaultSolvers d({kIpoptsOwnFactorisations});  // a fixed step fails before the end
+  DefaultSolvers d({kIpoptsOwnFactorisations,  // a fixed step fails before the end
+                    "reduction.minimize_zeta=0"});
   d.schedule.minimizer = Minimizer::kElastic;  // the cap is the elastic minimisation's
   d.schedule.minimize_iterations = 3;
   const ReductionResult result = reduce_objective(problem, d.solver, d.schedule);
@@ -785,7 +845,9 @@ TEST(ObjectiveReductionSalvage, AMinimisationStalledAtMaxIterIsSalvagedAndTheLoo
     return r.kind == SolveKind::kMinimize && r.outcome == NlpOutcome::kMaxIterations;
   };
   for (const char* max_iter : {"100", "60", "150", "80"}) {
-    DefaultSolvers d({std::string("ipopt.max_iter=") + max_iter});
+    // No weak attempt (reduction.minimize_zeta): one that stalls is followed by the
+    // minimisation as without it, not salvaged.
+    DefaultSolvers d({std::string("ipopt.max_iter=") + max_iter, "reduction.minimize_zeta=0"});
     ASSERT_GT(d.schedule.salvage_iterations, 0) << "configs/disco.yaml salvages";
     ASSERT_EQ(d.schedule.time_limit, 0.0);
     const ReductionResult result = reduce_objective(problem, d.solver, d.schedule);

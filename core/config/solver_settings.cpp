@@ -187,6 +187,7 @@ ReductionSettings reduction_settings(const Settings& s) {
   r.step_iterations = integer_at_least(s, "reduction.step_iterations", 1);
   r.minimize_iterations = integer_at_least(s, "reduction.minimize_iterations", 0);
   r.cold_minimize = choice<bool>(s, "reduction.minimize_duals", {{"cold", true}, {"warm", false}});
+  r.minimize_zeta = non_negative(s, "reduction.minimize_zeta");
   r.minimizer = choice<Minimizer>(s, "reduction.minimize",
                                   {{"elastic", Minimizer::kElastic}, {"branch", Minimizer::kBranch}});
   r.flip_rounds = integer_at_least(s, "reduction.flip_rounds", 0);

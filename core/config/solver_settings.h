@@ -57,6 +57,10 @@ struct ReductionSettings {
   // kElastic: a minimisation starts from the best point's primal values only, its duals cold
   // (ElasticRequest::cold_start); false: from its multipliers too.
   bool cold_minimize = false;
+  // kElastic: > 0: a minimisation first runs at zeta = min(this, the best point's zeta), its
+  // raises up to the best point's zeta times elastic.zeta_factor; if that is not certified it
+  // runs again as without (search/objective_reduction.h, "Minimisations"). 0: off.
+  double minimize_zeta = 0.0;
   int flip_rounds = 0;      // kBranch: at most this many rounds of flips per branch descent
   double time_limit = 0.0;  // s; 0 = none
   // Under a time limit: a step or minimisation cut by it has its point polished on its branch

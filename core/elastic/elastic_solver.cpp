@@ -73,12 +73,12 @@ MpccResult ElasticSolver::solve(const Mpcc& mpcc, const ConstVectorRef& z0,
   ElasticNlp shape(mpcc, settings_.formulation, settings_.zeta);
   NlpPoint start;
   start.z = shape.lift(z0);
-  return run(mpcc, std::move(start), settings_.zeta, request);
+  return run(mpcc, std::move(start), request.zeta > 0 ? request.zeta : settings_.zeta, request);
 }
 
 MpccResult ElasticSolver::solve(const Mpcc& mpcc, const MpccResult& warm,
                                 const ElasticRequest& request) const {
-  const double zeta = warm.zeta > 0 ? warm.zeta : settings_.zeta;
+  const double zeta = request.zeta > 0 ? request.zeta : warm.zeta > 0 ? warm.zeta : settings_.zeta;
   if (request.cold_start) {  // the primal point alone: IpoptSolver then starts cold
     NlpPoint primal;
     primal.z = warm.elastic_point.z;
@@ -198,11 +198,14 @@ bool ElasticSettings::Stall::stalled(int iteration,
   return before < kInf && before - recent < decrease * std::abs(before);
 }
 
-bool ElasticSolver::raise_zeta(double residual, double& previous_residual, double& zeta) const {
+bool ElasticSolver::raise_zeta(const ElasticRequest& request, double residual,
+                               double& previous_residual, double& zeta) const {
   const bool stalled = previous_residual >= 0 && std::abs(residual - previous_residual) <=
                                                      settings_.stall_change * previous_residual;
   previous_residual = residual;
-  if (stalled || zeta * settings_.zeta_factor > settings_.zeta_max) return false;
+  const double limit = request.zeta_limit > 0 ? std::min(request.zeta_limit, settings_.zeta_max)
+                                              : settings_.zeta_max;
+  if (stalled || zeta * settings_.zeta_factor > limit) return false;
   zeta *= settings_.zeta_factor;
   return true;
 }
@@ -265,7 +268,7 @@ bool ElasticSolver::penalty_loop(ElasticNlp& nlp, NlpPoint start, double zeta,
       return true;
     }
     if (request.objective_fixed ||
-        !raise_zeta(out.certificate.max_complementarity, previous_residual, zeta)) {
+        !raise_zeta(request, out.certificate.max_complementarity, previous_residual, zeta)) {
       out.status = MpccStatus::kElasticNotTight;
       return true;
     }
@@ -315,7 +318,7 @@ bool ElasticSolver::relaxation_homotopy(ElasticNlp& nlp, NlpPoint start, double 
       // as the penalty loop does (same stall rule, same zeta_max).
       // With the objective fixed, eps's minimiser does not depend on zeta: no raise either.
       if (held || request.objective_fixed ||
-          !raise_zeta(out.certificate.max_complementarity, previous_residual, zeta))
+          !raise_zeta(request, out.certificate.max_complementarity, previous_residual, zeta))
         return finish(true);
       continue;
     }

@@ -151,6 +151,11 @@ struct ElasticRequest {
   // is still reused, and the solves after the first (zeta raises, polish) are warm-started as
   // always.
   bool cold_start = false;
+  // > 0: the first solve's zeta, instead of the warm result's (or ElasticSettings::zeta from a
+  // point); the reduction's minimisations start weak (reduction.minimize_zeta).
+  double zeta = 0.0;
+  // > 0: the zeta rule raises zeta at most to this (and never past ElasticSettings::zeta_max).
+  double zeta_limit = 0.0;
 };
 
 // How well z satisfies the MPCC, in the MPCC's own units.
@@ -220,8 +225,10 @@ class ElasticSolver {
   // solve into it. They return whether the last NLP solve converged.
   using Record = std::function<void(const NlpResult&, const char*, double zeta)>;
   // The zeta rule of step 2: raises zeta by zeta_factor and returns true, unless the residual
-  // stalled against previous_residual (updated; < 0: none yet) or zeta_max would be passed.
-  bool raise_zeta(double residual, double& previous_residual, double& zeta) const;
+  // stalled against previous_residual (updated; < 0: none yet) or zeta_max (or the request's
+  // zeta_limit, if lower) would be passed.
+  bool raise_zeta(const ElasticRequest& request, double residual, double& previous_residual,
+                  double& zeta) const;
   bool penalty_loop(ElasticNlp& nlp, NlpPoint start, double zeta, const ElasticRequest& request,
                     MpccResult& out, const Record& record) const;
   bool relaxation_homotopy(ElasticNlp& nlp, NlpPoint start, double zeta,
