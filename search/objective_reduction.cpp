@@ -147,7 +147,7 @@ struct Reduction {
       return true;  // a descent stops at a local optimum, or at the time limit
     }
     const double bound = out.best_value;
-    const double zeta = out.best.zeta > 0 ? out.best.zeta : solver.settings().zeta;
+    const double zeta = solver.warm_zeta(out.best);  // what the minimisation would start at
     MpccResult r;
     if (cfg.minimize_zeta > 0 && cfg.minimize_zeta < zeta) {
       // Weak first (objective_reduction.h, "Minimisations"); not certified, as before, unless

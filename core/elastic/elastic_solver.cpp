@@ -78,7 +78,7 @@ MpccResult ElasticSolver::solve(const Mpcc& mpcc, const ConstVectorRef& z0,
 
 MpccResult ElasticSolver::solve(const Mpcc& mpcc, const MpccResult& warm,
                                 const ElasticRequest& request) const {
-  const double zeta = request.zeta > 0 ? request.zeta : warm.zeta > 0 ? warm.zeta : settings_.zeta;
+  const double zeta = request.zeta > 0 ? request.zeta : warm_zeta(warm);
   if (request.cold_start) {  // the primal point alone: IpoptSolver then starts cold
     NlpPoint primal;
     primal.z = warm.elastic_point.z;

@@ -203,9 +203,14 @@ class ElasticSolver {
   MpccResult solve(const Mpcc& mpcc, const ConstVectorRef& z0,
                    const ElasticRequest& request = {}) const;
   // From an earlier result on an MPCC of the same structure (bounds may
-  // differ): primal, duals and zeta are reused.
+  // differ): primal, duals and zeta (warm_zeta) are reused.
   MpccResult solve(const Mpcc& mpcc, const MpccResult& warm,
                    const ElasticRequest& request = {}) const;
+  // The zeta a solve warm-started from `warm` begins with when its request sets none: the
+  // zeta `warm` ended at, or ElasticSettings::zeta if it has none (a result not yet solved).
+  double warm_zeta(const MpccResult& warm) const {
+    return warm.zeta > 0 ? warm.zeta : settings_.zeta;
+  }
   // From a result, certified or not (its elastic point says which side of each pair is the
   // smaller): the branch NLP (for every pair that side fixed to 0, as polish does), solved;
   // then, while some biactive pair (the free side at its bound too) has a negative multiplier
