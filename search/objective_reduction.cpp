@@ -148,22 +148,22 @@ struct Reduction {
     }
     const double bound = out.best_value;
     const double zeta = solver.warm_zeta(out.best);  // what the minimisation would start at
-    MpccResult r;
+    std::optional<MpccResult> weak;
     if (cfg.minimize_zeta > 0 && cfg.minimize_zeta < zeta) {
       // Weak first (objective_reduction.h, "Minimisations"); not certified, as before, unless
       // a limit ended it (the clock, an interrupt, the early minimisation's cap).
-      r = step({Bound::kUpper, bound, iteration_limit, true, cfg.minimize_zeta,
-                zeta * solver.settings().zeta_factor},
-               out.best);
+      weak = step({Bound::kUpper, bound, iteration_limit, true, cfg.minimize_zeta,
+                   zeta * solver.settings().zeta_factor},
+                  out.best);
       const bool limited =
-          time_up || interrupt_requested() || r.outcome == NlpOutcome::kIterationCap;
-      if (!r.solved() && !limited) {
-        record(SolveKind::kMinimize, bound, r, false);
-        r = step({Bound::kUpper, bound, iteration_limit, true}, out.best);
+          time_up || interrupt_requested() || weak->outcome == NlpOutcome::kIterationCap;
+      if (!weak->solved() && !limited) {
+        record(SolveKind::kMinimize, bound, *weak, false);
+        weak.reset();
       }
-    } else {
-      r = step({Bound::kUpper, bound, iteration_limit, true}, out.best);
     }
+    MpccResult r =
+        weak ? std::move(*weak) : step({Bound::kUpper, bound, iteration_limit, true}, out.best);
     const bool improved = r.solved() && problem.objective(r.z) < bound;
     record(SolveKind::kMinimize, bound, r, improved);
     // A minimisation ended by the stall rule (elastic.stall) counts as converged for the loop
