@@ -13,9 +13,9 @@
 // "interrupted (SIGINT): K of N starts kept in DIR/runs.jsonl, L lost (...); continue with
 // --resume" and the search returns 128 + the signal (130 for SIGINT, 143 for SIGTERM), as
 // a shell reports a process a signal ended. A second signal ends the process at once (the
-// default action). Open MPI's mpirun kills the ranks 1 s after its SIGTERM
-// (odls_base_sigkill_timeout): what finished is on disk before then (every line is
-// fsync'ed as it is written).
+// default action). Open MPI's mpirun sends SIGCONT, then SIGTERM and SIGKILL 1 s apart
+// (odls_base_sigkill_timeout, search/README.md): what finished is on disk before then (every
+// line is fsync'ed as it is written).
 #pragma once
 
 #include <cstdint>
