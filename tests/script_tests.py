@@ -191,7 +191,12 @@ def test_results(disco):
     check(r.returncode == 0, f"bench_stress --scenes mu_0 exits 0 ({r.returncode})" + (r.stderr if r.returncode else ""))
     check(sections(stress) == ["default (partial: --scenes mu_0)"], f"one partial section ({sections(stress)})")
     text = section_text(stress, "default (partial: --scenes mu_0)")
-    check(f"- disco: `{version}` ({disco})" in text, "the header names disco's version and path")
+    # The path relative to the tree when inside it: results files, installed with the scripts,
+    # name no machine's checkout (install.tree).
+    root = os.path.dirname(os.path.abspath(SCRIPTS))
+    where = os.path.abspath(disco)
+    where = os.path.relpath(where, root) if where.startswith(root + os.sep) else disco
+    check(f"- disco: `{version}` ({where})" in text, f"the header names disco's version and path ({where})")
     check(f"- Command: `scripts/bench_stress --disco {disco} --scenes mu_0 --out " in text,
           "the header holds the command line")
     row = re.search(r"^\| mu_0 \| solved \| ([\d.]+) \| ([\d.]+) \|.*\| yes \|$", text, re.M)

@@ -153,7 +153,7 @@ class Results:
         lines = [f"- Command: `{self.command}`",
                  f"- Date: {self.start:%Y-%m-%d %H:%M} UTC"]
         for role, path in binaries:
-            lines.append(f"- {role}: `{disco_version(path)}` ({path})")
+            lines.append(f"- {role}: `{disco_version(path)}` ({shown(path)})")
         lines += [f"- Machine: {machine()}; load average (1 min) {self.load0:.2f} at the start, "
                   f"{os.getloadavg()[0]:.2f} at the end",
                   f"- Wall time: {time.monotonic() - self.t0:.0f} s"]
