@@ -181,58 +181,109 @@ std::vector<int> pushed_objects(const Scene& scene) {
   return pushes;
 }
 
-// Objects left without a pusher by pushed_objects() (more moving objects than pushers):
-// each is added to the queue of the lone pusher (the only one of its object) whose last
-// object ends nearest to it. A pusher with a queue pushes its objects one after the other:
-// it goes straight to the contact point straight behind the next object while every object
-// waits, pushes it to its target (smoothstep), and goes on; each leg takes a share of the
-// horizon in proportion to its length. An object waits at its start before its push and
-// rests at its target after it.
-void push_the_rest(const Scene& scene, const std::vector<int>& pushes, Paths& paths) {
-  const int N = scene.steps, n = static_cast<int>(scene.robots.size());
+using Point = std::array<double, 2>;
+template <class P>
+Point position(const P& p) {
+  return {p[kX], p[kY]};
+}
+double distance(const Point& a, const Point& b) { return std::hypot(b[0] - a[0], b[1] - a[1]); }
+
+// Robot i's contact point straight behind object o at the start and at the end of its move.
+std::pair<Point, Point> contact_points(const Scene& scene, int i, int o) {
+  const StraightMove move = straight_move(scene.robots[o]);
+  const double L = move.length(), R = scene.robots[i].radius + scene.robots[o].radius;
+  const double ux = (move.to[kX] - move.from[kX]) / L, uy = (move.to[kY] - move.from[kY]) / L;
+  return {{move.from[kX] - R * ux, move.from[kY] - R * uy}, {move.to[kX] - R * ux, move.to[kY] - R * uy}};
+}
+
+// One leg of a queued pusher's way: (from, to), and the object it pushes (-1: a way between).
+struct Leg {
+  Point from, to;
+  int object;
+};
+struct QueuedWays {
+  std::vector<std::vector<Leg>> legs;  // per robot; empty for one push_the_rest leaves alone
+  std::vector<char> to_target;         // the robot ends its way at its own target
+};
+
+// The plan of push_the_rest (below): which robots push which objects one after the other.
+QueuedWays queued_ways(const Scene& scene, const std::vector<int>& pushes) {
+  const int n = static_cast<int>(scene.robots.size());
   std::vector<std::vector<int>> queue(n);
   std::vector<int> team_size(n, 0);
   for (int i = 0; i < n; ++i)
     if (pushes[i] >= 0) ++team_size[pushes[i]];
   for (int i = 0; i < n; ++i)
     if (pushes[i] >= 0 && team_size[pushes[i]] == 1) queue[i].push_back(pushes[i]);
-  for (int o = 0; o < n; ++o) {
+  // Each moving object still without a pusher joins the queue of the contact partner i with
+  // the least cost(i, o) (kInf: not a candidate); returns that partner, or -1.
+  const auto queue_unpushed = [&](int o, auto&& cost) {
     const Robot& ob = scene.robots[o];
-    if (!ob.object || team_size[o] > 0 || straight_move(ob).length() == 0.0) continue;
+    if (!ob.object || team_size[o] > 0 || straight_move(ob).length() == 0.0) return -1;
     int best = -1;
-    double nearest = kInf;
+    double least = kInf;
     for (const Pair& p : scene.pairs) {
       if (p.mode != PairMode::kContact || (p.i != o && p.j != o)) continue;
       const int i = p.i == o ? p.j : p.i;
-      if (queue[i].empty()) continue;
-      const StraightMove last = straight_move(scene.robots[queue[i].back()]);
-      const double d = std::hypot(ob.start[kX] - last.to[kX], ob.start[kY] - last.to[kY]);
-      if (d < nearest) nearest = d, best = i;
+      const double c = cost(i, o);
+      if (c < least) least = c, best = i;
     }
     if (best >= 0) queue[best].push_back(o), team_size[o] = 1;
+    return best;
+  };
+  for (int o = 0; o < n; ++o)  // to a lone pusher, the one whose last object ends nearest
+    queue_unpushed(o, [&](int i, int obj) {
+      if (queue[i].empty()) return kInf;
+      const StraightMove last = straight_move(scene.robots[queue[i].back()]);
+      return std::hypot(scene.robots[obj].start[kX] - last.to[kX], scene.robots[obj].start[kY] - last.to[kY]);
+    });
+  QueuedWays ways{std::vector<std::vector<Leg>>(n), std::vector<char>(n, 0)};
+  for (int o = 0; o < n; ++o) {  // to a robot with a target, the one whose way it lengthens least
+    const int taker = queue_unpushed(o, [&](int i, int obj) {
+      const Robot& rb = scene.robots[i];
+      if (rb.object || rb.force_dims == 1 || position_free(rb)) return kInf;
+      const Point from = queue[i].empty() ? position(rb.start) : contact_points(scene, i, queue[i].back()).second;
+      const Point target = position(straight_move(rb).to);
+      const auto [behind, done] = contact_points(scene, i, obj);
+      return distance(from, behind) + straight_move(scene.robots[obj]).length() + distance(done, target) -
+             distance(from, target);
+    });
+    if (taker >= 0) ways.to_target[taker] = 1;
   }
   for (int i = 0; i < n; ++i) {
-    if (queue[i].size() < 2) continue;
-    // The legs: (from, to) of the robot, and the object pushed (-1: the way to it).
-    struct Leg {
-      std::array<double, 2> from, to;
-      int object;
-    };
-    std::vector<Leg> legs;
-    std::array<double, 2> at{scene.robots[i].start[kX], scene.robots[i].start[kY]};
+    if (queue[i].size() < 2 && !ways.to_target[i]) continue;
+    Point at = position(scene.robots[i].start);
     for (int o : queue[i]) {
-      const StraightMove move = straight_move(scene.robots[o]);
-      const double L = move.length(), R = scene.robots[i].radius + scene.robots[o].radius;
-      const double ux = (move.to[kX] - move.from[kX]) / L, uy = (move.to[kY] - move.from[kY]) / L;
-      const std::array<double, 2> behind{move.from[kX] - R * ux, move.from[kY] - R * uy};
-      const std::array<double, 2> done{move.to[kX] - R * ux, move.to[kY] - R * uy};
-      legs.push_back({at, behind, -1});
-      legs.push_back({behind, done, o});
+      const auto [behind, done] = contact_points(scene, i, o);
+      ways.legs[i].push_back({at, behind, -1});
+      ways.legs[i].push_back({behind, done, o});
       at = done;
     }
+    if (ways.to_target[i]) ways.legs[i].push_back({at, position(straight_move(scene.robots[i]).to), -1});
+  }
+  return ways;
+}
+
+// Objects left without a pusher by pushed_objects() (more moving objects than pushers):
+// each is added to the queue of the lone pusher (the only one of its object) whose last
+// object ends nearest to it. An object that still has none (no robot without a position
+// target can push it) is taken on the way by the robot with a position target whose way
+// it lengthens least: the way from where the robot's queue leaves it to the contact point
+// behind the object, the object's move, and the way from there to the robot's target,
+// less the way straight from the first to the last. A pusher with a queue pushes its objects
+// one after the other: it goes straight to the contact point straight behind the next object
+// while every object waits, pushes it to its target (smoothstep), and goes on, a robot with
+// a target at last to its target; each leg takes a share of the horizon in proportion to its
+// length. An object waits at its start before its push and rests at its target after it.
+void push_the_rest(const Scene& scene, const std::vector<int>& pushes, Paths& paths) {
+  const int N = scene.steps, n = static_cast<int>(scene.robots.size());
+  const QueuedWays ways = queued_ways(scene, pushes);
+  for (int i = 0; i < n; ++i) {
+    const std::vector<Leg>& legs = ways.legs[i];
+    if (legs.empty()) continue;
     std::vector<double> ends;  // the share of the horizon at each leg's end
     double total = 0.0;
-    for (const Leg& l : legs) ends.push_back(total += std::hypot(l.to[0] - l.from[0], l.to[1] - l.from[1]));
+    for (const Leg& l : legs) ends.push_back(total += distance(l.from, l.to));
     for (double& e : ends) e /= total;
     for (int t = 1; t <= N; ++t) {
       const double tau = static_cast<double>(t) / N;
@@ -251,7 +302,9 @@ void push_the_rest(const Scene& scene, const std::vector<int>& pushes, Paths& pa
         for (int c : {kX, kY, kPhi}) paths[o][t][c] = move.from[c] + f * (move.to[c] - move.from[c]);
       }
     }
-    for (int o : queue[i]) paths[o][N] = straight_move(scene.robots[o]).to;  // in its target
+    for (const Leg& l : legs)  // every object pushed in its target
+      if (l.object >= 0) paths[l.object][N] = straight_move(scene.robots[l.object]).to;
+    if (ways.to_target[i]) paths[i][N] = straight_move(scene.robots[i]).to;
   }
 }
 
@@ -632,6 +685,33 @@ Paths guess_paths(const Scene& scene, const StartSpec& start) {
   auto straight = [](int, double tau) { return tau; };
   auto no_offset = [](int, double, double&, double&) {};
   return build_paths(scene, straight, no_offset);
+}
+
+std::optional<double> pushers_way_time(const Scene& scene) {
+  const QueuedWays ways = queued_ways(scene, pushed_objects(scene));
+  std::optional<double> longest;
+  for (std::size_t i = 0; i < ways.legs.size(); ++i) {
+    if (!ways.to_target[i]) continue;
+    double total = 0.0;
+    for (const Leg& l : ways.legs[i]) {
+      std::optional<double> t;
+      if (l.object >= 0) {
+        t = pushed_move_time(scene, l.object);
+      } else {  // the robot alone, from rest at the leg's start to rest at its end
+        Robot leg = scene.robots[i];
+        leg.start = State{l.from[0], l.from[1], leg.start[kPhi], 0.0, 0.0, 0.0};
+        leg.target = StateBox{};
+        leg.target.lower[kX] = leg.target.upper[kX] = l.to[0];
+        leg.target.lower[kY] = leg.target.upper[kY] = l.to[1];
+        leg.target.lower[kVx] = leg.target.upper[kVx] = leg.target.lower[kVy] = leg.target.upper[kVy] = 0.0;
+        t = straight_move_time(leg, scene.gravity);
+      }
+      if (!t || !std::isfinite(*t)) return std::nullopt;
+      total += *t;
+    }
+    longest = std::max(longest.value_or(0.0), total);
+  }
+  return longest;
 }
 
 Perturbation perturb_feasible(const RobotProblem& problem, const StartSpec& start,

@@ -50,7 +50,22 @@
 // after the other (push_the_rest in guess.cpp: to the point straight behind the next
 // object, then with it to its target). On scenarios/push_two_coins.yaml the start 0 guess
 // with the second coin moving on its own found no feasible point (and neither did six
-// starts of a search, 2 ranks); with the queue `disco solve` reached 3.215824 s.
+// starts of a search, 2 ranks); with the queue `disco solve` reached 3.215824 s. An object
+// that still has no pusher (every robot of its contact pairs has a position target) is
+// taken on the way by the robot with a position target whose way it lengthens least (the
+// way to the contact point behind it, its move and the way from there to the robot's
+// target, less the robot's straight way), which pushes it as a lone pusher does and then
+// goes to its own target (push_the_rest); the first horizon then covers its way
+// (pushers_way_time, below). Before, such an object followed its own path as a robot would,
+// and start 0 seldom found a feasible point: on 15 random scenes of one coin and 1-3 robots
+// that all have targets (`scripts/bench_random --kind objects --count 16 --time-limit 60
+// --baseline <disco of 9247f36>`, section `default (partial: ...)` of
+// scripts/results/bench_random.md) a certified point on 6, against 13 now; of the 6, 3 ended
+// lower by more than 1e-3 now and 2 higher (+12 % and +13 %: one start's local optimum). On
+// scenarios/push_coin_and_park.yaml none before, 1.978341 s now (tests: GuessPushers,
+// guess.push_and_park). Scenes with a pusher free of a target, and scenes without objects,
+// get the same guesses and horizons as before, bit for bit (the 18-start set of bench_starts
+// and the four other coin scenes of scenarios/, checked).
 //
 // Conflicts. A pair (i, j) conflicts when, on the straight paths (which share the same
 // timing, so p_j - p_i = d0 + w (dN - d0) is linear in w), the centre distance drops
@@ -116,6 +131,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "core/model/robot_problem.h"
@@ -145,6 +161,16 @@ StraightMove straight_move(const Robot& robot);
 using Way = std::vector<std::array<double, 2>>;
 inline constexpr double kWayMargin = 1.2;
 Way way_around_obstacles(const Scene& scene, int robot);
+
+// The time the guesses' way asks of a robot with a position target that pushes objects on
+// its way ("Pushers" above): the sum over its legs of each leg's own time from rest to rest
+// (straight_move_time of the robot on a way between pushes, pushed_move_time of the object on
+// a push; core/model/lower_bound.h), a scale and not a bound; the longest over such robots,
+// absent when there is none (or a leg has no such time). feasibility_horizon
+// (search/objective_reduction.h) scales the first horizon on it when it is longer than the
+// scene's reference time: that reference is each robot's straight move alone, and a robot
+// that takes a coin on its way must first reach the coin and then leave it.
+std::optional<double> pushers_way_time(const Scene& scene);
 
 // The pairs whose straight paths, timed alike, come closer than their clearance.
 struct Conflict {

@@ -240,7 +240,9 @@ struct Reduction {
 double feasibility_horizon(const RobotProblem& problem, const ReductionSettings& cfg) {
   if (problem.horizon_is_fixed()) return problem.scene().objective.horizon;
   if (cfg.horizon > 0.0) return cfg.horizon;  // a start from a trajectory
-  const auto scale = problem.reference_time();
+  auto scale = problem.reference_time();
+  // A robot that takes a coin on its way to its own target (search/guess.h, pushers_way_time).
+  if (const auto way = pushers_way_time(problem.scene())) scale = std::max(scale.value_or(0.0), *way);
   return scale ? std::max(cfg.horizon_min, cfg.horizon_factor * *scale) : cfg.horizon_min;
 }
 

@@ -20,6 +20,8 @@ results  with a real disco: scripts/bench_stress and scripts/bench_examples on o
          of disco's LDLT solvers) on a KKT matrix
          of known inertia written here, [H Jᵀ; J 0] with H positive definite, and on a truncated
          one; and scripts/bench_kkt on start 0 of A2 (a corpus it dumps with disco).
+         scripts/bench_random: its generator (seeded, --kind objects), and a run of 2 scenes
+         against disco itself (the files, the rows against the solution files, the summary).
 """
 import argparse
 import json
@@ -31,6 +33,10 @@ import stat
 import struct
 import subprocess
 import sys
+from importlib.machinery import SourceFileLoader
+from importlib.util import module_from_spec, spec_from_loader
+
+import yaml  # python3-yaml
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from script_checks import check, finish  # noqa: E402
@@ -39,6 +45,14 @@ SCRIPTS, WORK, MODE = sys.argv[1], sys.argv[2], sys.argv[3]
 sys.path.insert(0, SCRIPTS)
 from common import arguments, paths, results, tables  # noqa: E402
 from common.solve import solve  # noqa: E402
+
+
+def load_script(name):
+    """scripts/NAME (a Python script without the .py) as a module."""
+    loader = SourceFileLoader(name, os.path.join(SCRIPTS, name))
+    module = module_from_spec(spec_from_loader(loader.name, loader))
+    loader.exec_module(module)
+    return module
 
 
 def sections(path):
@@ -157,11 +171,7 @@ def test_incumbent_measures():
     the scene's time is 7 s and the fastest start alone took 2 s (b's own clock). With the
     scene's lowest 9.0 both end within 1 % (below 9.09), so nothing is wasted; with the lowest
     8.95 (1 % above: 9.0395) b is above and a is not: 3 of 13 s."""
-    from importlib.machinery import SourceFileLoader
-    from importlib.util import module_from_spec, spec_from_loader
-    loader = SourceFileLoader("bench_incumbent", os.path.join(SCRIPTS, "bench_incumbent"))
-    bench = module_from_spec(spec_from_loader(loader.name, loader))
-    loader.exec_module(bench)
+    bench = load_script("bench_incumbent")
     runs = [{"status": "solved", "T_f": 9.0, "seconds": 10.0, "finished_s": 110.0,
              "history": [[4.0, 10.0], [9.0, 9.0]]},
             {"status": "dominated", "T_f": 9.05, "seconds": 3.0, "finished_s": 108.0,
@@ -236,6 +246,60 @@ def test_results(disco):
     check(run.lines[0].phase == "feasibility", f"the first solve is the feasibility phase ({run.lines[0].phase})")
 
 
+def test_random(disco):
+    """scripts/bench_random: the generator is a function of its seed (the same text twice), a
+    --kind objects scene has one object and a target for every robot, and a run against a
+    baseline (disco itself) writes the scenes it drew, a row per scene for both binaries that
+    is the solution file's, and the summary; the same binary gives the same T_f twice."""
+    bench = load_script("bench_random")
+    a = bench.scene_text("s", "mixed", random.Random(7))
+    b = bench.scene_text("s", "mixed", random.Random(7))
+    check(a is not None and a == b, "bench_random: the same seed draws the same scene")
+    for k in range(6):
+        drawn = bench.scene_text("o", "objects", random.Random(k))
+        if drawn is None:
+            continue
+        doc = yaml.safe_load(drawn[0])
+        check(len(doc.get("objects", [])) == 1 and all("x" in r["target"] for r in doc["robots"]),
+              f"bench_random --kind objects (seed {k}): one object, every robot with a target")
+    out, md = os.path.join(WORK, "random"), os.path.join(WORK, "bench_random.md")
+    r = run_script("bench_random", "--disco", disco, "--baseline", disco, "--count", "2", "--seed", "3",
+                   "--time-limit", "5", "--out", out, "--results", md)
+    check(r.returncode == 0, f"bench_random exits 0 ({r.returncode})" + (r.stderr if r.returncode else ""))
+    label = "default (partial: --count 2 --seed 3 --time-limit 5)"
+    check(sections(md) == [label], f"a partial section ({sections(md)})")
+    text = section_text(md, label) if label in sections(md) else ""
+    for k in range(2):
+        name = f"random_mixed_3_{k}"
+        scene = os.path.join(out, "scenes", name + ".yaml")
+        if not os.path.isfile(scene):
+            check(False, f"bench_random wrote {scene}")
+            continue
+        with open(scene) as f:
+            check(f.read() == bench.scene_text(name, "mixed", random.Random(3 * 100000 + k))[0],
+                  f"{name}: the file is the generator's text")
+        row = re.search(rf"^\| {name} \| \d+ / \d+ / \d+ \| (avoid|contact) \| (.*) \|$", text, re.M)
+        check(row is not None, f"{name}: a row")
+        if not row:
+            continue
+        cells = [c.strip() for c in row.group(2).split("|")]
+        for role, at in (("new", 0), ("base", 4)):
+            path = os.path.join(out, "runs", role, name, "solution.json")
+            sol = json.load(open(path)) if os.path.isfile(path) else {}
+            if sol.get("status") == "solved":
+                check(cells[at] in ("solved", "cut, T_f") and cells[at + 1] == f"{sol['T_f']:.6f}"
+                      and cells[at + 2] == str(sol["timing"]["iterations"]),
+                      f"{name} {role}: the row is the solution file's ({cells[at:at + 3]})")
+            else:
+                check(cells[at + 1] == "", f"{name} {role}: no T_f without a certified point ({cells[at + 1]})")
+    check(re.search(r"new: a certified point on \d+ of \d+ \(\d+ loops finished\)", text) is not None
+          and re.search(r"base: a certified point on \d+ of \d+", text) is not None,
+          "the summary counts each binary's certified scenes")
+    if "cut," not in text:  # disco is deterministic; a time limit's cut is not
+        check(re.search(r"where both certified \(\d+\): new lower by more than 0.001 on 0, higher on 0", text)
+              is not None, "the same binary twice: no scene lower or higher")
+
+
 def write_kkt(path, nx, m, seed):
     """A KKT file (core/ipopt/kkt_solver.h) of [H Jᵀ; J 0]: H (nx × nx) tridiagonal and diagonally
     dominant, J (m × nx, m <= nx) with a nonzero J(r, r) and two more entries per row, one triangle,
@@ -307,6 +371,7 @@ if MODE == "common":
 elif MODE == "results":
     DISCO = sys.argv[4]
     test_results(DISCO)
+    test_random(DISCO)
     test_bench_kkt(sys.argv[5])
 else:
     sys.exit(f"unknown mode {MODE}")
