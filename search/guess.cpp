@@ -234,8 +234,7 @@ QueuedWays queued_ways(const Scene& scene, const std::vector<int>& pushes) {
   for (int o = 0; o < n; ++o)  // to a lone pusher, the one whose last object ends nearest
     queue_unpushed(o, [&](int i, int obj) {
       if (queue[i].empty()) return kInf;
-      const StraightMove last = straight_move(scene.robots[queue[i].back()]);
-      return std::hypot(scene.robots[obj].start[kX] - last.to[kX], scene.robots[obj].start[kY] - last.to[kY]);
+      return distance(position(straight_move(scene.robots[queue[i].back()]).to), position(scene.robots[obj].start));
     });
   QueuedWays ways{std::vector<std::vector<Leg>>(n), std::vector<char>(n, 0)};
   for (int o = 0; o < n; ++o) {  // to a robot with a target, the one whose way it lengthens least
