@@ -296,9 +296,10 @@ int solve_checked(const SolveOptions& o, const Settings& settings, const Scene& 
     spdlog::warn("no certified solution: status {}{}", to_string(run.info.status), where.empty() ? "" : "; " + where);
   }
   spdlog::info("KKT: {} factorisations, {} of them by MUMPS for disco's LDLᵀ, {} by its pivoting "
-               "LDLᵀ for the other, {} pivot threshold raises (kkt.solver)",
+               "LDLᵀ for the other, {} pivot threshold raises (kkt.solver); {} analyses ordered "
+               "by nested dissection (kkt.ldlt.ordering)",
                run.info.kkt_factorisations, run.info.kkt_fallbacks, run.info.kkt_to_pivoted,
-               run.info.kkt_threshold_raises);
+               run.info.kkt_threshold_raises, run.info.kkt_nested_dissection);
   spdlog::info("{} NLP solves, {} iterations, {:.3f} s; wrote {}", run.info.nlp_solves,
                run.info.iterations, run.info.wall_s, path);
   return run.solved() ? 0 : 3;

@@ -96,7 +96,8 @@ json StartOutcome::to_json() const {
            {{"factorisations", kkt_factorisations},
             {"fallbacks", kkt_fallbacks},
             {"threshold_raises", kkt_threshold_raises},
-            {"to_pivoted", kkt_to_pivoted}}},
+            {"to_pivoted", kkt_to_pivoted},
+            {"nested_dissection", kkt_nested_dissection}}},
           {"seconds", seconds},
           {"time_to_first_feasible", time_to_first_feasible},
           {"time_to_best", time_to_best},
@@ -135,6 +136,7 @@ StartOutcome StartOutcome::from_json(const json& j) {
     o.kkt_fallbacks = j["kkt"].value("fallbacks", 0);
     o.kkt_threshold_raises = j["kkt"].value("threshold_raises", 0);
     o.kkt_to_pivoted = j["kkt"].value("to_pivoted", 0);
+    o.kkt_nested_dissection = j["kkt"].value("nested_dissection", 0);  // older files: none
   }
   o.seconds = j.value("seconds", 0.0);
   o.time_to_first_feasible = j.value("time_to_first_feasible", -1.0);
@@ -176,6 +178,7 @@ StartOutcome run_start(const Scene& scene, const Settings& settings, const Start
     out.kkt_fallbacks = r.kkt.fallbacks;
     out.kkt_threshold_raises = r.kkt.threshold_raises;
     out.kkt_to_pivoted = r.kkt.to_pivoted;
+    out.kkt_nested_dissection = r.kkt.nested_dissection;
     out.time_to_first_feasible = r.time_to_first_feasible;
     out.time_to_best = r.time_to_best;
     for (const auto& i : r.history) out.history.push_back({i.seconds, i.value});

@@ -74,8 +74,10 @@ struct StartOutcome {
   double max_complementarity = std::numeric_limits<double>::quiet_NaN();
   int nlp_solves = 0, iterations = 0;
   // KKT factorisations, those that went to MUMPS, the pivoting LDLᵀ's threshold raises, and
-  // the matrices the LDLᵀ passed to the pivoting one (core/ipopt/kkt_solver.h)
+  // the matrices the LDLᵀ passed to the pivoting one (core/ipopt/kkt_solver.h), the analyses
+  // that kept nested dissection (KktCounts::nested_dissection)
   int kkt_factorisations = 0, kkt_fallbacks = 0, kkt_threshold_raises = 0, kkt_to_pivoted = 0;
+  int kkt_nested_dissection = 0;
   double seconds = 0.0;
   double time_to_first_feasible = -1.0, time_to_best = -1.0;  // s within the start
   std::string description;  // StartSpec::describe()

@@ -127,6 +127,7 @@ SceneSolve solve_scene(const Scene& scene, const Settings& settings, const Start
   out.info.kkt_fallbacks = out.result.kkt.fallbacks;
   out.info.kkt_threshold_raises = out.result.kkt.threshold_raises;
   out.info.kkt_to_pivoted = out.result.kkt.to_pivoted;
+  out.info.kkt_nested_dissection = out.result.kkt.nested_dissection;
   if (out.result.found) {
     out.z = out.result.best.z;
     out.info.stationarity = out.result.stationarity;

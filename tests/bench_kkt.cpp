@@ -19,6 +19,9 @@
 //     when its growth() is above kkt.ldlt.growth_limit (disco gives that matrix to MUMPS);
 //     smallest_eigenvalue and certified: the inertia certificate (kkt.ldlt.certificate), which
 //     disco asks for when the inertia is not the one Ipopt wants (uncertified: to MUMPS).
+//   - ldlt and pivoted also report their analysis, timed once: analyse_ms, and the ordering it
+//     chose (kkt.ldlt.ordering): ordering "amd" or "nested_dissection", amd_flops and
+//     nested_dissection_flops (null when not computed).
 // Each solve's x is checked here, the same way for both: the normwise backward error
 // ‖b − A x‖∞ / (‖A‖∞ ‖x‖∞ + ‖b‖∞) against the file's right-hand side b (null when x is not finite).
 //
@@ -266,11 +269,26 @@ void solve_timed(const KktFile& k, const Symmetric& a, Solver& ldlt, int repeat,
   out["backward_error"] = backward_error(a, k.rhs, x);
 }
 
+// The analysis of one of disco's LDLT solvers, timed once: its time and the ordering it chose
+// (kkt.ldlt.ordering) with the multiply-adds of each ordering it judged.
+template <class Solver>
+json analyse_timed(const KktFile& k, const LdltSettings& settings, Solver& ldlt) {
+  const Stopwatch clock;
+  ldlt.analyse(k.n, k.nnz, k.ia.data(), k.ja.data(), 1, k.dual_from, settings.ordering);
+  json out;
+  out["analyse_ms"] = clock.seconds() * 1e3;
+  const FillReducingOrder& o = ldlt.ordering();
+  out["ordering"] = o.ordering == Ordering::kAmd ? "amd" : "nested_dissection";
+  out["amd_flops"] = o.amd_flops;
+  out["nested_dissection_flops"] =
+      o.nested_dissection_flops >= 0 ? json(o.nested_dissection_flops) : json(nullptr);
+  return out;
+}
+
 json run_ldlt(const KktFile& k, const Symmetric& a, const LdltSettings& settings, int repeat) {
   SparseLdlt ldlt;
-  ldlt.analyse(k.n, k.nnz, k.ia.data(), k.ja.data(), 1, k.dual_from);
+  json out = analyse_timed(k, settings, ldlt);
   SparseLdlt::Factorised status = SparseLdlt::Factorised::kDone;
-  json out;
   out["factor_ms"] = median_ms(
       repeat, [] {}, [&] { status = ldlt.factor(k.values.data(), settings); });
   const bool factors = status == SparseLdlt::Factorised::kDone ||
@@ -299,9 +317,8 @@ json run_ldlt(const KktFile& k, const Symmetric& a, const LdltSettings& settings
 json run_pivoted(const KktFile& k, const Symmetric& a, const LdltSettings& settings,
                 int repeat) {
   PivotedLdlt ldlt;
-  ldlt.analyse(k.n, k.nnz, k.ia.data(), k.ja.data(), 1, k.dual_from);
+  json out = analyse_timed(k, settings, ldlt);
   PivotedLdlt::Factorised status = PivotedLdlt::Factorised::kDone;
-  json out;
   out["factor_ms"] = median_ms(
       repeat, [] {},
       [&] { status = ldlt.factor(k.values.data(), settings, settings.pivot_threshold); });

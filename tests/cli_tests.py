@@ -1,10 +1,12 @@
 #!/usr/bin/env python3
 """The command line's traps (run by CTest as cli.traps and cli.clock; see tests/CMakeLists.txt).
 
-  cli_tests.py DISCO SCENES WORKDIR [traps | clock]
+  cli_tests.py DISCO SCENES WORKDIR [traps | clock | ordering]
 
 clock: on the simulated clock (`clock.kind: iterations`) a time-limited solve gives the same
-point, counts and time twice, and a bad clock key is refused. traps (the default):
+point, counts and time twice, and a bad clock key is refused. ordering: on a dense contact
+scene the KKT analyses keep METIS's nested dissection (kkt.ldlt.ordering), counted in
+solution.json and the log, and none with the threshold out of reach. traps (the default):
 Each check runs disco and looks at its exit status and messages: the scene file may come
 after --set; an unknown command is named, with the closest one; a settings key that is a
 scene key gets the 'scene.' hint, a mistyped one the closest key; --model-only checks every
@@ -34,6 +36,48 @@ os.makedirs(WORK, exist_ok=True)
 def run(*args):
     return subprocess.run([DISCO, *args], env=ENV, capture_output=True, text=True)
 
+
+if MODE == "ordering":
+    # kkt.ldlt.ordering (core/linalg/permuted_symmetric.h): on a dense contact scene (scene 5
+    # of `scripts/bench_random --kind mixed --seed 1`: 4 robots in contact pairs, two contact
+    # posts, 40 steps), AMD's elimination needs 1.8e8 multiply-adds, far above the threshold,
+    # and nested dissection's fewer: the analyses keep it, and say so (solution.json and the
+    # log); with the threshold out of reach, none does. The first Ipopt iterations only (the
+    # simulated clock cuts the solve at the same iteration every time).
+    scene = os.path.join(WORK, "dense_contact.yaml")
+    with open(scene, "w") as f:
+        f.write("""scenario: dense_contact
+steps: 40
+robots:
+  - {name: r0, radius: 0.213, mass: 1.907, mu: 0.448, force_max: 24.596, K: 16, start: {x: -0.628, y: 0.196}, target: {x: 0.097, y: -0.000, vx: 0, vy: 0}}
+  - {name: r1, radius: 0.206, mass: 2.793, mu: 0.460, force_max: 17.223, K: 8, start: {x: 1.469, y: 2.214}, target: {x: -2.010, y: 3.816, vx: 0, vy: 0}}
+  - {name: r2, radius: 0.504, mass: 1.347, mu: 0.134, force_max: 2.369, K: 16, start: {x: 3.431, y: -3.518}, target: {x: 1.545, y: -0.437, vx: 0, vy: 0}}
+  - {name: r3, radius: 0.212, mass: 2.236, mu: 0.104, force_max: 7.343, K: 16, start: {x: 3.546, y: 2.694}, target: {x: -1.822, y: 2.832, vx: 0, vy: 0, phi: 0.350}}
+obstacles:
+  - {name: ob0, disk: {x: 0.921, y: -1.731, radius: 0.293}, mode: contact}
+  - {name: ob1, disk: {x: -1.863, y: 0.451, radius: 0.254}, mode: contact}
+pairs: {mode: contact, mu: 0.226}
+""")
+    counts = {}
+    for name, above in (("judged", None), ("amd_only", "1e300")):
+        out = os.path.join(WORK, name)
+        extra = [] if above is None else ["--set", f"kkt.ldlt.ordering.nested_dissection_above={above}"]
+        r = run("solve", scene, "--threads", "1", "--set", "clock.kind=iterations", "--set",
+                "clock.seconds_per_iteration=0.01", "--set", "reduction.time_limit=0.05", "--out", out,
+                *extra)
+        path = os.path.join(out, "solution.json")
+        kkt = json.load(open(path))["timing"]["kkt"] if os.path.exists(path) else {}
+        logged = re.search(r"(\d+) analyses ordered by nested dissection", r.stderr)
+        counts[name] = (r.returncode, kkt.get("nested_dissection"), logged and int(logged.group(1)),
+                        kkt.get("factorisations"))
+    judged, amd_only = counts["judged"], counts["amd_only"]
+    check(judged[0] in (0, 3) and judged[1] is not None and judged[1] >= 1 and judged[2] == judged[1],
+          f"a dense contact scene: its analyses keep nested dissection, counted in solution.json and "
+          f"the log (exit, solution.json, log, factorisations: {judged})")
+    check(amd_only[0] in (0, 3) and amd_only[1] == 0 and amd_only[2] == 0 and amd_only[3],
+          f"with nested_dissection_above out of reach: AMD only (exit, solution.json, log, "
+          f"factorisations: {amd_only})")
+    finish("cli_tests ordering")
 
 if MODE == "clock":
     # The simulated clock (`clock.kind: iterations`, core/util/clock.h): a time-limited solve

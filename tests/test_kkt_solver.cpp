@@ -136,6 +136,9 @@ TEST(KktSolver, BadSettingsAreRefusedNamingTheKey) {
                 .find("kkt.ldlt.pivoting.threshold_max"),
             std::string::npos);
   EXPECT_NE(message("kkt.ldlt.fallback=pardiso").find("kkt.ldlt.fallback"), std::string::npos);
+  EXPECT_NE(message("kkt.ldlt.ordering.nested_dissection_above=-1")
+                .find("kkt.ldlt.ordering.nested_dissection_above"),
+            std::string::npos);
   EXPECT_NE(message("kkt.ldlt.pivoting.zero_pivot=-1").find("kkt.ldlt.pivoting.zero_pivot"),
             std::string::npos);
 }

@@ -19,7 +19,10 @@ namespace disco {
 namespace {
 
 using namespace testing_kkt;
-const auto analysed = testing_kkt::analysed<PivotedLdlt>;
+// analysed(t, dual_from): testing_kkt::analysed with the ordering of settings().
+const auto analysed = [](const testing_kkt::Triplets& t, int dual_from) {
+  return testing_kkt::analysed<PivotedLdlt>(t, dual_from);
+};
 
 // A random sparse symmetric matrix with many zero diagonals and entries of mixed signs: no
 // ordering eliminates it without pivoting.

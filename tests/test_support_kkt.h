@@ -15,7 +15,8 @@ namespace disco {
 namespace testing_kkt {
 
 // kkt.ldlt's settings as configs/disco.yaml holds them, with a tighter residual tolerance (the
-// tests do not depend on the values beyond the tolerance they ask for).
+// tests do not depend on the values beyond the tolerance they ask for) and every structure's
+// ordering judged (nested dissection kept where it needs fewer multiply-adds than AMD).
 inline LdltSettings settings() {
   LdltSettings s;
   s.scaling_sweeps = 5;
@@ -28,6 +29,7 @@ inline LdltSettings settings() {
   s.pivot_threshold = 0.01;
   s.pivot_threshold_max = 0.5;
   s.zero_pivot = 1e-14;
+  s.ordering.nested_dissection_above = 0.0;
   return s;
 }
 
@@ -57,9 +59,11 @@ struct Triplets {
 // A solver (SparseLdlt, PivotedLdlt) analysed for t's structure; rows dual_from.. are its
 // constraint block.
 template <class Solver>
-Solver analysed(const Triplets& t, int dual_from) {
+Solver analysed(const Triplets& t, int dual_from,
+                const OrderingSettings& ordering = settings().ordering) {
   Solver f;
-  f.analyse(t.n, static_cast<int>(t.values.size()), t.rows.data(), t.cols.data(), 1, dual_from);
+  f.analyse(t.n, static_cast<int>(t.values.size()), t.rows.data(), t.cols.data(), 1, dual_from,
+            ordering);
   return f;
 }
 

@@ -85,6 +85,7 @@ LdltSettings ldlt_settings(const Settings& s) {
   if (!(l.pivot_threshold_max >= l.pivot_threshold && l.pivot_threshold_max <= 0.5))
     refuse(s, "kkt.ldlt.pivoting.threshold_max", "must lie in [kkt.ldlt.pivoting.threshold, 0.5]");
   l.zero_pivot = positive(s, "kkt.ldlt.pivoting.zero_pivot");
+  l.ordering.nested_dissection_above = non_negative(s, "kkt.ldlt.ordering.nested_dissection_above");
   l.fallback_pivoted =
       choice<bool>(s, "kkt.ldlt.fallback", {{"pivoted", true}, {"mumps", false}});
   return l;

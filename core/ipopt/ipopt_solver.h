@@ -155,6 +155,9 @@ struct KktCounts {
   // kkt.solver ldlt with kkt.ldlt.fallback pivoted: the matrices the LDLᵀ passed to the
   // pivoting LDLᵀ instead of MUMPS (counted in factorisations too).
   int to_pivoted = 0;
+  // Analyses of a structure by disco's LDLᵀ solvers (once per solve and solver) that kept
+  // METIS's nested dissection rather than AMD (kkt.ldlt.ordering; core/linalg/permuted_symmetric.h).
+  int nested_dissection = 0;
   // The matrices Ipopt handed over for factorisation: every factorisation but a matrix's second
   // or later (a fallback, a pass to the pivoting LDLᵀ, a factorisation with a raised threshold).
   int matrices() const { return factorisations - fallbacks - to_pivoted - threshold_raises; }
@@ -164,6 +167,7 @@ struct KktCounts {
     fallbacks += o.fallbacks;
     threshold_raises += o.threshold_raises;
     to_pivoted += o.to_pivoted;
+    nested_dissection += o.nested_dissection;
     return *this;
   }
 };

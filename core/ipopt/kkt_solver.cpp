@@ -194,7 +194,8 @@ class KktLinearSolver : public Ipopt::SparseSymLinearSolverInterface {
     if (!own()) return mumps_->MultiSolve(true, ia, ja, nrhs, rhs, check_inertia, negative);
     if (pivoted()) return factor_pivoted(ia, ja, nrhs, rhs, check_inertia, negative);
     if (!ldlt_analysed_) {
-      ldlt_.analyse(dim_, nonzeros_, ia, ja, 1, dual_from());
+      ldlt_.analyse(dim_, nonzeros_, ia, ja, 1, dual_from(), options_.ldlt.ordering);
+      if (ldlt_.ordering().ordering == Ordering::kNestedDissection) ++counts_.nested_dissection;
       ldlt_analysed_ = true;
     }
     holder_ = Holder::kLdlt;
@@ -225,7 +226,9 @@ class KktLinearSolver : public Ipopt::SparseSymLinearSolverInterface {
   ESymSolverStatus factor_pivoted(const Index* ia, const Index* ja, Index nrhs, double* rhs,
                                   bool check_inertia, Index negative) {
     if (!pivoted_analysed_) {
-      pivoted_.analyse(dim_, nonzeros_, ia, ja, 1, dual_from());
+      pivoted_.analyse(dim_, nonzeros_, ia, ja, 1, dual_from(), options_.ldlt.ordering);
+      if (pivoted_.ordering().ordering == Ordering::kNestedDissection)
+        ++counts_.nested_dissection;
       pivoted_analysed_ = true;
       threshold_ = options_.ldlt.pivot_threshold;
     }

@@ -4,6 +4,9 @@
 #include <Eigen/Core>
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCore>
+#include <metis.h>
+
+#include <algorithm>
 #include <limits>
 #include <numeric>
 #include <utility>
@@ -12,7 +15,12 @@
 
 namespace disco {
 
-std::vector<int> amd_order(int n, int nnz, const int* rows, const int* cols, int base) {
+namespace {
+
+using PatternMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+
+// The symmetric pattern of the triplets (both triangles) with every diagonal entry.
+PatternMatrix symmetric_pattern(int n, int nnz, const int* rows, const int* cols, int base) {
   DISCO_CHECK(n >= 0 && nnz >= 0, "a matrix shape");
   std::vector<Eigen::Triplet<double, int>> pattern;
   pattern.reserve(2 * static_cast<size_t>(nnz) + n);
@@ -23,11 +31,109 @@ std::vector<int> amd_order(int n, int nnz, const int* rows, const int* cols, int
     pattern.emplace_back(j, i, 1.0);
   }
   for (int i = 0; i < n; ++i) pattern.emplace_back(i, i, 1.0);
-  Eigen::SparseMatrix<double, Eigen::ColMajor, int> full(n, n);
+  PatternMatrix full(n, n);
   full.setFromTriplets(pattern.begin(), pattern.end());
+  return full;
+}
+
+// METIS's seed: fixed, so that an ordering depends on the pattern alone.
+constexpr idx_t kMetisSeed = 1;
+
+}  // namespace
+
+std::vector<int> amd_order(int n, int nnz, const int* rows, const int* cols, int base) {
+  const PatternMatrix full = symmetric_pattern(n, nnz, rows, cols, base);
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> amd;
   Eigen::AMDOrdering<int>()(full, amd);
   return std::vector<int>(amd.indices().data(), amd.indices().data() + n);
+}
+
+std::vector<int> nested_dissection_order(int n, int nnz, const int* rows, const int* cols,
+                                         int base) {
+  const PatternMatrix full = symmetric_pattern(n, nnz, rows, cols, base);
+  // METIS's graph: each vertex's neighbours, without the vertex itself.
+  std::vector<idx_t> start(n + 1, 0), neighbours;
+  neighbours.reserve(full.nonZeros());
+  for (int j = 0; j < n; ++j) {
+    for (PatternMatrix::InnerIterator it(full, j); it; ++it)
+      if (it.row() != j) neighbours.push_back(it.row());
+    start[j + 1] = static_cast<idx_t>(neighbours.size());
+  }
+  if (n == 0) return {};
+  idx_t options[METIS_NOPTIONS];
+  METIS_SetDefaultOptions(options);
+  options[METIS_OPTION_SEED] = kMetisSeed;
+  idx_t vertices = n;
+  std::vector<idx_t> perm(n), iperm(n);
+  // perm[k]: the vertex that is k-th in the new order (METIS's manual).
+  if (METIS_NodeND(&vertices, start.data(), neighbours.data(), nullptr, options, perm.data(),
+                   iperm.data()) != METIS_OK)
+    return {};
+  return std::vector<int>(perm.begin(), perm.end());
+}
+
+double EliminationTree::flops() const {
+  double sum = 0.0;
+  for (const int c : count) sum += static_cast<double>(c) * (c + 1) / 2.0;
+  return sum;
+}
+
+EliminationTree elimination_tree(int n, const std::vector<int>& ap, const std::vector<int>& ai) {
+  EliminationTree tree;
+  tree.parent.assign(n, -1);
+  tree.count.assign(n, 0);
+  std::vector<int> flag(n, -1);
+  for (int k = 0; k < n; ++k) {
+    flag[k] = k;
+    for (int p = ap[k]; p < ap[k + 1]; ++p) {
+      for (int i = ai[p]; flag[i] != k; i = tree.parent[i]) {
+        if (tree.parent[i] == -1) tree.parent[i] = k;
+        ++tree.count[i];
+        flag[i] = k;
+      }
+    }
+  }
+  return tree;
+}
+
+double elimination_flops(int n, int nnz, const int* rows, const int* cols, int base,
+                         const std::vector<int>& order) {
+  DISCO_CHECK(n >= 0 && nnz >= 0 && static_cast<int>(order.size()) == n, "a matrix shape");
+  std::vector<int> position(n, -1);
+  for (int k = 0; k < n; ++k) {
+    DISCO_CHECK(order[k] >= 0 && order[k] < n && position[order[k]] < 0, "a permutation");
+    position[order[k]] = k;
+  }
+  // The upper triangle by columns in the new numbering (unsorted, repeats kept).
+  std::vector<int> ap(n + 1, 0), ai(nnz);
+  for (int t = 0; t < nnz; ++t) {
+    const int i = rows[t] - base, j = cols[t] - base;
+    DISCO_CHECK(i >= 0 && i < n && j >= 0 && j < n, "a triplet inside the matrix");
+    ++ap[std::max(position[i], position[j]) + 1];
+  }
+  for (int k = 0; k < n; ++k) ap[k + 1] += ap[k];
+  std::vector<int> next(ap.begin(), ap.end() - 1);
+  for (int t = 0; t < nnz; ++t) {
+    const int a = position[rows[t] - base], b = position[cols[t] - base];
+    ai[next[std::max(a, b)]++] = std::min(a, b);
+  }
+  return elimination_tree(n, ap, ai).flops();
+}
+
+FillReducingOrder fill_reducing_order(int n, int nnz, const int* rows, const int* cols, int base,
+                                      const OrderingSettings& settings) {
+  FillReducingOrder chosen;
+  chosen.order = amd_order(n, nnz, rows, cols, base);
+  chosen.amd_flops = elimination_flops(n, nnz, rows, cols, base, chosen.order);
+  if (!(chosen.amd_flops > settings.nested_dissection_above)) return chosen;
+  std::vector<int> nd = nested_dissection_order(n, nnz, rows, cols, base);
+  if (nd.empty()) return chosen;  // METIS failed: AMD's stands
+  chosen.nested_dissection_flops = elimination_flops(n, nnz, rows, cols, base, nd);
+  if (chosen.nested_dissection_flops < chosen.amd_flops) {
+    chosen.order = std::move(nd);
+    chosen.ordering = Ordering::kNestedDissection;
+  }
+  return chosen;
 }
 
 void PermutedSymmetric::assign(int n, int nnz, const int* rows, const int* cols, int base,

@@ -1,7 +1,11 @@
 // disco — a symmetric matrix held in a fixed elimination order: what disco's two LDLᵀ solvers
 // (sparse_ldlt.h without pivoting, pivoted_ldlt.h with) share.
 //
-//   - the AMD ordering of a pattern given as triplets (amd_order);
+//   - the fill-reducing ordering of a pattern given as triplets (fill_reducing_order): AMD
+//     (amd_order), or METIS's nested dissection (nested_dissection_order) where AMD's
+//     elimination is expensive and nested dissection's is cheaper, judged by the symbolic count
+//     of multiply-adds (elimination_flops; kkt.ldlt.ordering in configs/disco.yaml);
+//   - the elimination tree and the column counts of L (elimination_tree);
 //   - A's upper triangle in the permuted numbering, by columns, one slot per distinct entry and
 //     every diagonal present, with the slot each triplet adds into (assign; repeats and mirrored
 //     entries are summed by load);
@@ -26,6 +30,48 @@ namespace disco {
 // matrix given as nnz triplets numbered from `base` (either triangle): order[k] is the row
 // eliminated k-th.
 std::vector<int> amd_order(int n, int nnz, const int* rows, const int* cols, int base);
+
+// METIS's nested dissection (METIS_NodeND with its default options and a fixed seed, so the same
+// pattern gives the same order) of the same pattern, as amd_order; empty if METIS fails (it
+// reports only running out of memory or an invalid graph).
+std::vector<int> nested_dissection_order(int n, int nnz, const int* rows, const int* cols,
+                                         int base);
+
+// The elimination tree of a symmetric pattern given by its upper triangle by columns (column k
+// holds rows ap[k]..ap[k+1]−1 of ai, each at most k, in any order, repeats allowed) and the
+// column counts of its Cholesky-like factor L (entries below the diagonal, without
+// cancellation), from each row's reach in the tree (the up-looking elimination's pattern).
+struct EliminationTree {
+  std::vector<int> parent;  // parent[j]: the column j's update goes to first (−1: a root)
+  std::vector<int> count;   // count[j]: entries of L's column j below the diagonal
+  // Multiply-adds of one LDLᵀ elimination with this pattern: Σ_j count[j]·(count[j] + 1)/2.
+  double flops() const;
+};
+EliminationTree elimination_tree(int n, const std::vector<int>& ap, const std::vector<int>& ai);
+
+// The multiply-adds of an LDLᵀ elimination without pivoting of the pattern (as amd_order) in
+// `order` (EliminationTree::flops of the permuted pattern).
+double elimination_flops(int n, int nnz, const int* rows, const int* cols, int base,
+                         const std::vector<int>& order);
+
+// Which fill-reducing ordering an analysis chose.
+enum class Ordering { kAmd, kNestedDissection };
+
+// kkt.ldlt.ordering: the ordering of each new structure is AMD's, unless AMD's elimination
+// needs more than `nested_dissection_above` multiply-adds; then METIS's nested dissection is
+// computed too and kept when its elimination needs fewer.
+struct OrderingSettings {
+  double nested_dissection_above = 0.0;
+};
+
+struct FillReducingOrder {
+  std::vector<int> order;  // order[k]: the row eliminated k-th
+  Ordering ordering = Ordering::kAmd;
+  double amd_flops = 0.0;                // elimination_flops of AMD's order
+  double nested_dissection_flops = -1.0;  // of nested dissection's (−1: not computed)
+};
+FillReducingOrder fill_reducing_order(int n, int nnz, const int* rows, const int* cols, int base,
+                                      const OrderingSettings& settings);
 
 class PermutedSymmetric {
  public:

@@ -41,22 +41,6 @@ double largest_abs(const double* x, int count) {
 using ConstMatrix = Eigen::Map<const Eigen::MatrixXd>;
 using Vector = Eigen::Map<Eigen::VectorXd>;
 
-// The elimination tree of the upper triangle (ap, ai) by columns (Liu, with path compression).
-std::vector<int> elimination_tree(int n, const std::vector<int>& ap, const std::vector<int>& ai) {
-  std::vector<int> parent(n, -1), ancestor(n, -1);
-  for (int k = 0; k < n; ++k) {
-    for (int p = ap[k]; p < ap[k + 1]; ++p) {
-      for (int i = ai[p]; i != -1 && i < k;) {
-        const int next = ancestor[i];
-        ancestor[i] = k;
-        if (next == -1) parent[i] = k;
-        i = next;
-      }
-    }
-  }
-  return parent;
-}
-
 // A postorder of the forest `parent` (children in increasing order): post[k] is the k-th node.
 std::vector<int> postorder(const std::vector<int>& parent) {
   const int n = static_cast<int>(parent.size());
@@ -88,11 +72,15 @@ std::vector<int> postorder(const std::vector<int>& parent) {
 }  // namespace
 
 std::vector<int> PivotedLdlt::postponed_order(int n, int nnz, const int* rows, const int* cols,
-                                              int base, int dual_from) {
-  const std::vector<int> amd = amd_order(n, nnz, rows, cols, base);
+                                              int base, int dual_from,
+                                              const OrderingSettings& ordering) {
+  FillReducingOrder chosen = fill_reducing_order(n, nnz, rows, cols, base, ordering);
+  const std::vector<int> fill = std::move(chosen.order);
+  chosen.order.clear();
+  ordering_ = chosen;
   std::vector<int> position(n);
-  for (int k = 0; k < n; ++k) position[amd[k]] = k;
-  std::vector<int> earliest(n, n);  // a constraint row's earliest primal neighbour in `amd`
+  for (int k = 0; k < n; ++k) position[fill[k]] = k;
+  std::vector<int> earliest(n, n);  // a constraint row's earliest primal neighbour in `fill`
   for (int t = 0; t < nnz; ++t) {
     const int i = rows[t] - base, j = cols[t] - base;
     if (i >= dual_from && j < dual_from) earliest[i] = std::min(earliest[i], position[j]);
@@ -108,44 +96,37 @@ std::vector<int> PivotedLdlt::postponed_order(int n, int nnz, const int* rows, c
   std::vector<Key> key(n);
   postponed_ = 0;
   for (int k = 0; k < n; ++k) {
-    const int i = amd[k];
+    const int i = fill[k];
     const bool postpone = i >= dual_from && earliest[i] < n && earliest[i] > k;
     key[k] = postpone ? Key{earliest[i], 1, k} : Key{k, 0, k};
     postponed_ += postpone;
   }
   std::sort(key.begin(), key.end());
   std::vector<int> order(n);
-  for (int k = 0; k < n; ++k) order[k] = amd[key[k].was];
+  for (int k = 0; k < n; ++k) order[k] = fill[key[k].was];
   return order;
 }
 
 void PivotedLdlt::analyse(int n, int nnz, const int* rows, const int* cols, int base,
-                          int dual_from) {
+                          int dual_from, const OrderingSettings& ordering) {
   DISCO_CHECK(n >= 0 && nnz >= 0 && dual_from >= 0 && dual_from <= n, "a matrix shape");
   n_ = n;
-  // AMD with constraint rows postponed behind a primal neighbour, then a postorder of its
-  // elimination tree (the same fill; fronts become contiguous and children's update
-  // matrices lie on a stack in the order their parent needs them).
-  const std::vector<int> amd = postponed_order(n, nnz, rows, cols, base, dual_from);
-  a_.assign(n, nnz, rows, cols, base, amd);
-  const std::vector<int> post = postorder(elimination_tree(n, a_.ap(), a_.ai()));
+  // The fill-reducing ordering with constraint rows postponed behind a primal neighbour, then a
+  // postorder of its elimination tree (the same fill; fronts become contiguous and children's
+  // update matrices lie on a stack in the order their parent needs them).
+  const std::vector<int> postponed = postponed_order(n, nnz, rows, cols, base, dual_from, ordering);
+  a_.assign(n, nnz, rows, cols, base, postponed);
+  const std::vector<int> post = postorder(elimination_tree(n, a_.ap(), a_.ai()).parent);
   std::vector<int> order(n);
-  for (int k = 0; k < n; ++k) order[k] = amd[post[k]];
+  for (int k = 0; k < n; ++k) order[k] = postponed[post[k]];
   a_.assign(n, nnz, rows, cols, base, order);
   const std::vector<int>& ap = a_.ap();
   const std::vector<int>& ai = a_.ai();
-  const std::vector<int> parent = elimination_tree(n, ap, ai);
-
-  // Column counts of L (below the diagonal): row k's reach in the tree.
-  std::vector<int> count(n, 0), flag(n, -1), children(n, 0);
-  for (int k = 0; k < n; ++k) {
-    flag[k] = k;
-    for (int p = ap[k]; p < ap[k + 1]; ++p)
-      for (int i = ai[p]; flag[i] != k; i = parent[i]) {
-        ++count[i];
-        flag[i] = k;
-      }
-  }
+  // The tree and the column counts of L below the diagonal (row k's reach in the tree).
+  const EliminationTree tree = elimination_tree(n, ap, ai);
+  const std::vector<int>& parent = tree.parent;
+  const std::vector<int>& count = tree.count;
+  std::vector<int> flag(n, -1), children(n, 0);
   for (int k = 0; k < n; ++k)
     if (parent[k] != -1) ++children[parent[k]];
   // Fundamental supernodes: column k joins k−1's when k−1's only parent is k, k has no other
@@ -244,8 +225,7 @@ void PivotedLdlt::analyse(int n, int nnz, const int* rows, const int* cols, int 
     for (int q = rows_ptr_[s]; q < rows_ptr_[s + 1]; ++q) local[rows_[q]] = -1;
   }
 
-  flops_ = 0.0;
-  for (int k = 0; k < n; ++k) flops_ += static_cast<double>(count[k]) * (count[k] + 1) / 2.0;
+  flops_ = tree.flops();
   m_.assign(nodes, 0);
   npiv_.assign(nodes, 0);
   index_ptr_.assign(nodes + 1, 0);

@@ -4,7 +4,8 @@
 // Factorises P (S A S) Pᵀ = L D Lᵀ, where
 //   - A is the symmetric matrix as given (one triangle in triplets, repeats summed) and S its
 //     symmetric Ruiz scaling (permuted_symmetric.h): every row's largest entry near 1;
-//   - P is an approximate minimum degree ordering (Eigen's AMD) with each constraint row moved
+//   - P is a fill-reducing ordering (AMD, or METIS's nested dissection where that needs fewer
+//     multiply-adds: permuted_symmetric.h, fill_reducing_order) with each constraint row moved
 //     behind a primal neighbour (postponed_order()), followed by a postorder of its elimination
 //     tree, then changed during the factorisation by the pivoting (delayed pivots);
 //   - D is block diagonal with 1×1 and 2×2 blocks, L unit lower triangular.
@@ -59,7 +60,9 @@ class PivotedLdlt {
   // Analyses an n × n symmetric structure given as nnz triplets numbered from `base` (either
   // triangle; an entry and its mirror are summed). Rows dual_from..n−1 are the constraint block
   // (zero diagonals expected; the ordering puts each behind a primal neighbour; n: none).
-  void analyse(int n, int nnz, const int* rows, const int* cols, int base, int dual_from);
+  // The fill-reducing ordering is chosen as `ordering` says (fill_reducing_order).
+  void analyse(int n, int nnz, const int* rows, const int* cols, int base, int dual_from,
+               const OrderingSettings& ordering);
 
   enum class Factorised {
     kDone,       // L and D computed; negative() is the inertia of A
@@ -90,6 +93,8 @@ class PivotedLdlt {
   double largest_multiplier() const;  // computed from the stored factors
   double flops() const { return flops_; }  // multiply-adds of the analysis (no delays)
   int postponed() const { return postponed_; }  // constraint rows moved behind a primal one
+  // The fill-reducing ordering the analysis chose, before the postponement (order field empty).
+  const FillReducingOrder& ordering() const { return ordering_; }
   int supernodes() const { return static_cast<int>(first_.size()) - 1; }
   int last_refinement_steps() const { return refinement_steps_used_; }
 
@@ -98,7 +103,7 @@ class PivotedLdlt {
   // columns 0..nf−1 whole, the rest lower) as far as the threshold allows; g: its variables.
   // Returns the pivots taken, or −1 when a root's remaining block is singular.
   int eliminate(double* f, int m, int nf, int* g, bool root, double threshold);
-  // The ordering: AMD on A's graph (sparse_ldlt.h's, the least fill), with every constraint row
+  // The ordering: sparse_ldlt.h's on A's graph (fill_reducing_order), with every constraint row
   // that comes before all of its primal neighbours moved to right after the first of them. A
   // constraint row's diagonal is zero (δc = 0), so eliminated first it could only wait for a
   // later front; after a primal neighbour it has a diagonal (−a²/h from that elimination).
@@ -107,7 +112,7 @@ class PivotedLdlt {
   // for AMD alone and 3.9e6 for AMD on the graph with each constraint row merged with a
   // primal neighbour, the ordering this one replaced.)
   std::vector<int> postponed_order(int n, int nnz, const int* rows, const int* cols, int base,
-                                   int dual_from);
+                                   int dual_from, const OrderingSettings& ordering);
   // Merges supernodes (first_, node_of) into larger fronts (relaxed amalgamation).
   void relax(const std::vector<int>& count, const std::vector<int>& parent,
              std::vector<int>& node_of);
@@ -147,6 +152,7 @@ class PivotedLdlt {
   };
   std::vector<Update> updates_;
   int postponed_ = 0;
+  FillReducingOrder ordering_;
   int pivot_count_ = 0;  // pivots taken so far in this factorisation
   int negative_ = 0, delayed_ = 0, two_by_two_ = 0, forced_ = 0, refinement_steps_used_ = 0;
   int64_t factor_entries_ = 0;

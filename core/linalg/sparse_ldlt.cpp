@@ -16,34 +16,29 @@ constexpr double kPivotFloor = 1e-6;
 }  // namespace
 
 void SparseLdlt::analyse(int n, int nnz, const int* rows, const int* cols, int base,
-                         int dual_from) {
+                         int dual_from, const OrderingSettings& ordering) {
   DISCO_CHECK(n >= 0 && nnz >= 0 && dual_from >= 0 && dual_from <= n, "a matrix shape");
   n_ = n;
-  a_.assign(n, nnz, rows, cols, base, amd_order(n, nnz, rows, cols, base));
+  FillReducingOrder chosen = fill_reducing_order(n, nnz, rows, cols, base, ordering);
+  a_.assign(n, nnz, rows, cols, base, chosen.order);
+  chosen.order.clear();
+  ordering_ = chosen;
   dual_.assign(n, 0);
   for (int k = 0; k < n; ++k) dual_[k] = a_.order()[k] >= dual_from ? 1 : 0;
   const std::vector<int>& ap = a_.ap();
   const std::vector<int>& ai = a_.ai();
 
   // Elimination tree and column counts of L (the up-looking elimination's reach of each row).
-  std::vector<int> parent(n, -1), count(n, 0), flag(n, -1);
-  for (int k = 0; k < n; ++k) {
-    flag[k] = k;
-    for (int p = ap[k]; p < ap[k + 1]; ++p) {
-      for (int i = ai[p]; flag[i] != k; i = parent[i]) {
-        if (parent[i] == -1) parent[i] = k;
-        ++count[i];
-        flag[i] = k;
-      }
-    }
-  }
+  const EliminationTree tree = elimination_tree(n, ap, ai);
+  const std::vector<int>& parent = tree.parent;
+  const std::vector<int>& count = tree.count;
+  std::vector<int> flag(n, -1);
   lp_.assign(n + 1, 0);
   for (int k = 0; k < n; ++k) lp_[k + 1] = lp_[k] + count[k];
   const int entries_l = lp_[n];
   li_.assign(entries_l, 0);
   lx_.assign(entries_l, 0.0);
-  flops_ = 0.0;
-  for (int k = 0; k < n; ++k) flops_ += static_cast<double>(count[k]) * (count[k] + 1) / 2.0;
+  flops_ = tree.flops();
 
   // Every row's pattern of L in the order its elimination visits it (reverse of the reach's
   // discovery, path by path: a topological order of the tree), and where each entry lies.

@@ -9,7 +9,8 @@
 //     magnitude becomes +δ in the primal block and −δ in the constraint (dual) block, the signs
 //     of a quasi-definite matrix [H + δI, Jᵀ; J, −δI]; a pivot that still falls below δ·1e-6
 //     during the elimination is replaced by ±δ the same way and counted (perturbed());
-//   - P is an approximate minimum degree ordering (Eigen's AMD) of the pattern, computed once per
+//   - P is a fill-reducing ordering of the pattern (AMD, or METIS's nested dissection where that
+//     needs fewer multiply-adds: permuted_symmetric.h, fill_reducing_order), computed once per
 //     structure with the elimination tree, the column counts of L and the pattern of every row of
 //     L (analyse()); a factorisation then only moves numbers, in arrays sized once;
 //   - L is unit lower triangular, D diagonal (1×1 pivots only: no pivoting, which is what makes
@@ -69,6 +70,8 @@ struct LdltSettings {
   bool fallback_pivoted = false;
   double pivot_threshold_max = 0.0;
   double zero_pivot = 0.0;
+  // kkt.ldlt.ordering: the fill-reducing ordering of both solvers' analyses.
+  OrderingSettings ordering;
 };
 
 class SparseLdlt {
@@ -76,8 +79,10 @@ class SparseLdlt {
   // Analyses the structure of an n × n symmetric matrix given as nnz triplets (rows[t], cols[t]),
   // numbered from `base` (1: Ipopt's triplets), entries of either triangle (an entry and its
   // mirror may both appear: they are summed). Rows dual_from..n−1 are the constraint block (their
-  // regularisation is negative). Allocates everything the factorisations and solves need.
-  void analyse(int n, int nnz, const int* rows, const int* cols, int base, int dual_from);
+  // regularisation is negative). Orders it as `ordering` says (fill_reducing_order).
+  // Allocates everything the factorisations and solves need.
+  void analyse(int n, int nnz, const int* rows, const int* cols, int base, int dual_from,
+               const OrderingSettings& ordering);
 
   enum class Factorised {
     kDone,       // L and D computed; inertia() is that of S A S + R
@@ -104,6 +109,9 @@ class SparseLdlt {
   // bound on the largest entry of |L| |D| |Lᵀ| (the scaled matrix's entries are at most 1).
   double growth() const { return growth_; }
   double flops() const { return flops_; }  // multiply-adds of one factorisation
+  // The analysis's ordering: which one, and the multiply-adds of each one it judged (its order
+  // field is empty: the order is the matrix's, inside).
+  const FillReducingOrder& ordering() const { return ordering_; }
   // max_k |R(k, k)|: the 2-norm of the regularisation the last factorisation added to S A S
   // (the diagonal entries set to ±δ and the pivots replaced; at most 2δ).
   double regularisation_norm() const { return regularisation_norm_; }
@@ -127,6 +135,7 @@ class SparseLdlt {
 
   int n_ = 0;
   PermutedSymmetric a_;  // A in the elimination order, its scaling, the refined solve
+  FillReducingOrder ordering_;
   std::vector<char> dual_;  // dual_[k]: permuted row k is in the constraint block
   // L by columns: lp_, li_, lx_; and by rows, in the topological order the elimination of row k
   // visits them: rp_, ri_ (the columns), rslot_ (where L(k, ri) lies in lx_).

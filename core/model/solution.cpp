@@ -85,7 +85,8 @@ json solution_json(const RobotProblem& problem, const Vector& z, const SolutionI
        {{"factorisations", info.kkt_factorisations},
         {"fallbacks", info.kkt_fallbacks},
         {"threshold_raises", info.kkt_threshold_raises},
-        {"to_pivoted", info.kkt_to_pivoted}}}};
+        {"to_pivoted", info.kkt_to_pivoted},
+        {"nested_dissection", info.kkt_nested_dissection}}}};
 
   const State unit{u.length, u.length, 1.0, u.velocity(), u.velocity(), 1.0 / u.time};
   auto value = [&](const Affine& a) { return a.value(z); };
