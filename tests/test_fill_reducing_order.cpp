@@ -1,6 +1,7 @@
 // The fill-reducing orderings of disco's LDLᵀ solvers (core/linalg/permuted_symmetric.h):
 // the symbolic counts they are judged by, the choice between AMD and METIS's nested dissection
-// (kkt.ldlt.ordering), and both solvers on a structure where nested dissection is kept.
+// (kkt.ldlt.ordering), both solvers on a structure where nested dissection is kept, and the
+// OrderingCache that keeps one ordering per structure.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -185,13 +186,13 @@ TEST(FillReducingOrder, KeepsTheOrderingWithFewerMultiplyAdds) {
   EXPECT_LT(o.nested_dissection_flops, 0.8 * o.amd_flops);
 }
 
-// A KKT matrix [H, Jᵀ; J, 0] whose Hessian has the cube's pattern (indefinite), J a row per
-// fourth variable (the variable and its neighbour along x): both solvers, ordered by nested
-// dissection, give the inertia and the solution of a dense eigen/LU solve.
-TEST(FillReducingOrder, BothSolversAreExactInNestedDissectionsOrder) {
-  const Pattern cube = grid3(6);
-  const int nx = cube.n, m = nx / 4;
-  std::mt19937 rng(5);
+// A KKT matrix [H, Jᵀ; J, 0] whose Hessian has the pattern of the g × g × g grid (random
+// values, indefinite), J a row per `every`-th variable: that variable, and with offset > 0 also
+// the variable `offset` further on (modulo g³).
+Triplets cube_kkt(int g, int every, int offset, unsigned seed) {
+  const Pattern cube = grid3(g);
+  const int nx = cube.n, m = nx / every;
+  std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   Triplets t;
   t.n = nx + m;
@@ -200,9 +201,18 @@ TEST(FillReducingOrder, BothSolversAreExactInNestedDissectionsOrder) {
     t.add(i, j, i == j ? 4.0 * u(rng) : u(rng));
   }
   for (int r = 0; r < m; ++r) {
-    t.add(nx + r, 4 * r, 1.0 + std::abs(u(rng)));
-    t.add(nx + r, (4 * r + 36) % nx, u(rng));
+    t.add(nx + r, every * r, 1.0 + std::abs(u(rng)));
+    if (offset > 0) t.add(nx + r, (every * r + offset) % nx, u(rng));
   }
+  return t;
+}
+
+// The cube's KKT matrix with J a row per fourth variable (the variable and its neighbour along
+// x): both solvers, ordered by nested dissection, give the inertia and the solution of a dense
+// eigen/LU solve.
+TEST(FillReducingOrder, BothSolversAreExactInNestedDissectionsOrder) {
+  const Triplets t = cube_kkt(6, 4, 36, 5);
+  const int nx = 6 * 6 * 6;
   const Eigen::MatrixXd a = t.dense();
   const Eigen::VectorXd eigenvalues = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(a).eigenvalues();
   ASSERT_GT(eigenvalues.cwiseAbs().minCoeff(), 1e-6);  // nonsingular: the inertia is defined
@@ -226,6 +236,98 @@ TEST(FillReducingOrder, BothSolversAreExactInNestedDissectionsOrder) {
   x = b;
   EXPECT_LE(pivoted.solve(x.data()), 1e-12);
   EXPECT_LE((x - expected).norm(), 1e-8 * expected.norm());
+}
+
+// OrderingCache: a structure met again gets the ordering fill_reducing_order gives it, without
+// computing it again; another structure (another triplet, the same n and nnz), other settings
+// or another base are met anew; the least recently used structure is the one dropped.
+TEST(OrderingCache, AnswersAsFillReducingOrderAndComputesEachStructureOnce) {
+  const Pattern cube = grid3(6), square = grid2(14), spread = random_pattern(300, 3, 7);
+  auto direct = [](const Pattern& p, double above) {
+    return fill_reducing_order(p.n, p.nnz(), p.rows.data(), p.cols.data(), 0,
+                               OrderingSettings{above});
+  };
+  auto same = [](const FillReducingOrder& a, const FillReducingOrder& b) {
+    return a.order == b.order && a.ordering == b.ordering && a.amd_flops == b.amd_flops &&
+           a.nested_dissection_flops == b.nested_dissection_flops;
+  };
+  OrderingCache cache(2);
+  auto cached = [&](const Pattern& p, double above, int base = 0) {
+    return cache.order(p.n, p.nnz(), p.rows.data(), p.cols.data(), base, OrderingSettings{above});
+  };
+  EXPECT_TRUE(same(cached(cube, 0.0), direct(cube, 0.0)));  // nested dissection kept
+  EXPECT_EQ(cached(cube, 0.0).ordering, Ordering::kNestedDissection);
+  EXPECT_TRUE(same(cached(square, 0.0), direct(square, 0.0)));
+  EXPECT_EQ(cache.computed(), 2);
+  EXPECT_EQ(cache.reused(), 1);
+  EXPECT_TRUE(same(cached(cube, 0.0), direct(cube, 0.0)));
+  EXPECT_EQ(cache.computed(), 2);
+  EXPECT_EQ(cache.reused(), 2);
+
+  // Other settings are another answer: AMD alone.
+  EXPECT_TRUE(same(cached(cube, kNever), direct(cube, kNever)));
+  EXPECT_EQ(cached(cube, kNever).ordering, Ordering::kAmd);
+  EXPECT_EQ(cache.computed(), 3);  // dropped: square, the least recently used
+  EXPECT_TRUE(same(cached(cube, 0.0), direct(cube, 0.0)));
+  EXPECT_EQ(cache.computed(), 3);
+  EXPECT_TRUE(same(cached(square, 0.0), direct(square, 0.0)));
+  EXPECT_EQ(cache.computed(), 4);
+
+  // One triplet moved (the same n and nnz): another structure.
+  Pattern moved = spread;
+  EXPECT_TRUE(same(cached(spread, 0.0), direct(spread, 0.0)));
+  moved.cols[5] = (moved.cols[5] + 1) % moved.n;
+  const int before = cache.computed();
+  EXPECT_TRUE(same(cached(moved, 0.0), direct(moved, 0.0)));
+  EXPECT_EQ(cache.computed(), before + 1);
+
+  // Numbered from 1: the same pattern as numbered from 0, but a structure of its own.
+  Pattern one = moved;
+  for (int& r : one.rows) ++r;
+  for (int& c : one.cols) ++c;
+  EXPECT_EQ(cached(one, 0.0, 1).order, direct(moved, 0.0).order);
+  EXPECT_EQ(cache.computed(), before + 2);
+}
+
+// Both solvers analysed with an ordering from the cache are the solvers analysed with the
+// settings: the same factors, bit for bit.
+TEST(OrderingCache, SolversGivenTheCachedOrderingFactoriseTheSameBits) {
+  const Triplets t = cube_kkt(5, 5, 0, 9);
+  const int nx = 5 * 5 * 5;
+  OrderingCache cache;
+  const OrderingSettings ordering{0.0};
+  const int nnz = static_cast<int>(t.values.size());
+  const int* rows = t.rows.data();  // numbered from 1
+  const int* cols = t.cols.data();
+  const FillReducingOrder& chosen = cache.order(t.n, nnz, rows, cols, 1, ordering);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(t.n, -1.0, 2.0);
+
+  SparseLdlt given, own;
+  given.analyse(t.n, nnz, rows, cols, 1, nx, chosen);
+  own.analyse(t.n, nnz, rows, cols, 1, nx, ordering);
+  ASSERT_EQ(given.factor(t.values.data(), settings()), SparseLdlt::Factorised::kDone);
+  ASSERT_EQ(own.factor(t.values.data(), settings()), SparseLdlt::Factorised::kDone);
+  EXPECT_EQ(given.ordering().ordering, own.ordering().ordering);
+  EXPECT_EQ(given.negative(), own.negative());
+  Eigen::VectorXd x = b, y = b;
+  given.solve(x.data());
+  own.solve(y.data());
+  EXPECT_EQ(x, y);
+
+  PivotedLdlt given_p, own_p;
+  given_p.analyse(t.n, nnz, rows, cols, 1, nx, chosen);
+  own_p.analyse(t.n, nnz, rows, cols, 1, nx, ordering);
+  ASSERT_EQ(given_p.factor(t.values.data(), settings(), settings().pivot_threshold),
+            PivotedLdlt::Factorised::kDone);
+  ASSERT_EQ(own_p.factor(t.values.data(), settings(), settings().pivot_threshold),
+            PivotedLdlt::Factorised::kDone);
+  EXPECT_EQ(given_p.negative(), own_p.negative());
+  x = b;
+  y = b;
+  given_p.solve(x.data());
+  own_p.solve(y.data());
+  EXPECT_EQ(x, y);
+  EXPECT_EQ(cache.computed(), 1);
 }
 
 }  // namespace

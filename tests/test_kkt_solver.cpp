@@ -108,6 +108,30 @@ TEST(KktSolver, WithThePivotedFallbackTheLdltsMissesGoToThePivotingLdlt) {
   }
 }
 
+// The fill-reducing ordering of a structure is computed once per IpoptSolver: the LDLᵀ and
+// the pivoting LDLᵀ it passes matrices to share it within a solve, and a later solve of the
+// same NLP reuses it; the solve is the same bit for bit as one by a new IpoptSolver.
+TEST(KktSolver, AnIpoptSolverOrdersEachStructureOnceAcrossSolversAndSolves) {
+  const Contact c;
+  const IpoptSettings settings = settings_with(
+      {"kkt.solver=ldlt", "kkt.ldlt.fallback=pivoted", "kkt.ldlt.residual_tolerance=1e-14",
+       "kkt.ldlt.refinement_steps=0"});
+  IpoptSolver solver(settings);
+  NlpPoint start;
+  start.z = c.elastic.lift(smoothstep_guess(c.rp, 4.0));
+  const NlpResult first = solver.solve(c.elastic, start);
+  const NlpResult second = solver.solve(c.elastic, start);
+  const NlpResult fresh = c.solve(settings);
+  ASSERT_TRUE(first.converged()) << describe(first.outcome, first.ipopt_status);
+  EXPECT_GT(first.kkt.to_pivoted, 0);  // both solvers analysed the structure
+  EXPECT_EQ(first.kkt.orderings, 1);
+  EXPECT_EQ(second.kkt.orderings, 0);
+  EXPECT_EQ(fresh.kkt.orderings, 1);
+  EXPECT_EQ(second.iterations, first.iterations);
+  EXPECT_EQ(second.point.z, first.point.z);
+  EXPECT_EQ(fresh.point.z, first.point.z);
+}
+
 TEST(KktSolver, BadSettingsAreRefusedNamingTheKey) {
   const auto message = [](const std::string& o) {
     try {

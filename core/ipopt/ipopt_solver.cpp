@@ -407,7 +407,7 @@ NlpResult IpoptSolver::solve(const Nlp& nlp, const NlpPoint& start, const NlpLim
   auto* adapter = new TnlpAdapter(nlp, start, out, limits);
   Ipopt::SmartPtr<Ipopt::TNLP> tnlp = adapter;
   const KktOptions kkt{perturbed_first_, !(warm_start_ && start.has_duals()), kkt_solver_, ldlt_,
-                       dump_, &dumped_};
+                       dump_, &dumped_, &orderings_};
   out.ipopt_status = static_cast<int>(optimize(*app, tnlp, kkt, out.kkt));
   if (adapter->error()) std::rethrow_exception(adapter->error());  // a bug in a callback
   out.outcome = outcome_of(out.ipopt_status, adapter->stopped());

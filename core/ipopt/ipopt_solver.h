@@ -155,9 +155,12 @@ struct KktCounts {
   // kkt.solver ldlt with kkt.ldlt.fallback pivoted: the matrices the LDLᵀ passed to the
   // pivoting LDLᵀ instead of MUMPS (counted in factorisations too).
   int to_pivoted = 0;
-  // Analyses of a structure by disco's LDLᵀ solvers (once per solve and solver) that kept
-  // METIS's nested dissection rather than AMD (kkt.ldlt.ordering; core/linalg/permuted_symmetric.h).
+  // Analyses of a structure by disco's LDLᵀ solvers (once per solve and solver) whose ordering
+  // is METIS's nested dissection rather than AMD (kkt.ldlt.ordering; core/linalg/permuted_symmetric.h).
   int nested_dissection = 0;
+  // Fill-reducing orderings computed: structures the IpoptSolver met for the first time (its
+  // analyses of a structure met before reuse that ordering; permuted_symmetric.h, OrderingCache).
+  int orderings = 0;
   // The matrices Ipopt handed over for factorisation: every factorisation but a matrix's second
   // or later (a fallback, a pass to the pivoting LDLᵀ, a factorisation with a raised threshold).
   int matrices() const { return factorisations - fallbacks - to_pivoted - threshold_raises; }
@@ -168,6 +171,7 @@ struct KktCounts {
     threshold_raises += o.threshold_raises;
     to_pivoted += o.to_pivoted;
     nested_dissection += o.nested_dissection;
+    orderings += o.orderings;
     return *this;
   }
 };
@@ -212,6 +216,9 @@ class IpoptSolver {
   LdltSettings ldlt_;
   KktDump dump_;
   int dumped_ = 0;  // KKT matrices factorised so far, for kkt.dump.every
+  // The fill-reducing orderings of the KKT structures met so far (the solves of one
+  // IpoptSolver, a start, meet a few structures again and again; permuted_symmetric.h).
+  OrderingCache orderings_;
   bool warm_start_ = false;  // the configured warm_start_init_point (Ipopt's default: no)
   // The configured barrier options, restored after a solve with a BarrierStage.
   std::string mu_strategy_;

@@ -194,7 +194,7 @@ class KktLinearSolver : public Ipopt::SparseSymLinearSolverInterface {
     if (!own()) return mumps_->MultiSolve(true, ia, ja, nrhs, rhs, check_inertia, negative);
     if (pivoted()) return factor_pivoted(ia, ja, nrhs, rhs, check_inertia, negative);
     if (!ldlt_analysed_) {
-      ldlt_.analyse(dim_, nonzeros_, ia, ja, 1, dual_from(), options_.ldlt.ordering);
+      ldlt_.analyse(dim_, nonzeros_, ia, ja, 1, dual_from(), ordering(ia, ja));
       if (ldlt_.ordering().ordering == Ordering::kNestedDissection) ++counts_.nested_dissection;
       ldlt_analysed_ = true;
     }
@@ -226,7 +226,7 @@ class KktLinearSolver : public Ipopt::SparseSymLinearSolverInterface {
   ESymSolverStatus factor_pivoted(const Index* ia, const Index* ja, Index nrhs, double* rhs,
                                   bool check_inertia, Index negative) {
     if (!pivoted_analysed_) {
-      pivoted_.analyse(dim_, nonzeros_, ia, ja, 1, dual_from(), options_.ldlt.ordering);
+      pivoted_.analyse(dim_, nonzeros_, ia, ja, 1, dual_from(), ordering(ia, ja));
       if (pivoted_.ordering().ordering == Ordering::kNestedDissection)
         ++counts_.nested_dissection;
       pivoted_analysed_ = true;
@@ -301,6 +301,16 @@ class KktLinearSolver : public Ipopt::SparseSymLinearSolverInterface {
     return mumps_->MultiSolve(true, ia, ja, nrhs, rhs, check_inertia, negative);
   }
 
+  // The fill-reducing ordering of the current structure (kkt.ldlt.ordering), computed once for
+  // the IpoptSolver's solves and both solvers.
+  const FillReducingOrder& ordering(const Index* ia, const Index* ja) {
+    OrderingCache& cache = options_.orderings ? *options_.orderings : own_orderings_;
+    const int computed = cache.computed();
+    const FillReducingOrder& chosen = cache.order(dim_, nonzeros_, ia, ja, 1, options_.ldlt.ordering);
+    counts_.orderings += cache.computed() - computed;
+    return chosen;
+  }
+
   // The first row of the constraint block: Ipopt's augmented system is ordered x, s, c, d
   // (IpStdAugSystemSolver), the last two the constraint multipliers.
   int dual_from() const {
@@ -345,6 +355,7 @@ class KktLinearSolver : public Ipopt::SparseSymLinearSolverInterface {
   PivotedLdlt pivoted_;
   bool pivoted_analysed_ = false;
   double threshold_ = 0.0;  // its pivot threshold in this solve (raised by IncreaseQuality)
+  OrderingCache own_orderings_{1};  // without KktOptions::orderings
   std::vector<double> values_, original_;
 };
 

@@ -12,7 +12,8 @@
 // Ipopt applies), exactly as Ipopt calls it.
 //
 // kkt.solver ldlt: disco's LDLᵀ (core/linalg/sparse_ldlt.h; analysed once per solve, at its
-// first factorisation; the constraint block is Ipopt's rows of y_c and y_d, the last of the
+// first factorisation, with the structure's fill-reducing ordering computed once per
+// IpoptSolver and shared by both LDLᵀ solvers: KktOptions::orderings; the constraint block is Ipopt's rows of y_c and y_d, the last of the
 // augmented system x, s, c, d). MUMPS's overhead per factorisation (11 ms on n ≈ 11 k for
 // 5 MFlop; ~6 ms for a diagonal matrix) is what the LDLᵀ saves (scripts/results/bench_kkt.md).
 //   - A factorisation whose inertia is not the one Ipopt asks for is answered "wrong inertia"
@@ -112,6 +113,9 @@ struct KktOptions {
   LdltSettings ldlt;
   KktDump dump;
   int* dumped = nullptr;  // matrices factorised so far by this IpoptSolver (kkt.dump.every)
+  // The orderings of the structures analysed so far by this IpoptSolver (its solves and both
+  // LDLᵀ solvers share them; permuted_symmetric.h); nullptr: the solve keeps its own.
+  OrderingCache* orderings = nullptr;
 };
 
 // kkt.dump writes every `every`-th matrix Ipopt hands over for factorisation (the degeneracy

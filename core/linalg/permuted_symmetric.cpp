@@ -136,6 +136,45 @@ FillReducingOrder fill_reducing_order(int n, int nnz, const int* rows, const int
   return chosen;
 }
 
+OrderingCache::OrderingCache(int capacity) : capacity_(capacity) {
+  DISCO_CHECK(capacity >= 1, "an ordering cache holds at least one structure");
+}
+
+const FillReducingOrder& OrderingCache::order(int n, int nnz, const int* rows, const int* cols,
+                                              int base, const OrderingSettings& settings) {
+  ++uses_;
+  for (Entry& e : entries_) {
+    if (e.n == n && e.base == base && static_cast<int>(e.rows.size()) == nnz &&
+        e.nested_dissection_above == settings.nested_dissection_above &&
+        std::equal(rows, rows + nnz, e.rows.begin()) &&
+        std::equal(cols, cols + nnz, e.cols.begin())) {
+      e.last_use = uses_;
+      ++reused_;
+      return e.chosen;
+    }
+  }
+  // The entry is made whole before it replaces one: an exception leaves the cache as it was.
+  Entry made;
+  made.n = n;
+  made.base = base;
+  made.nested_dissection_above = settings.nested_dissection_above;
+  made.rows.assign(rows, rows + nnz);
+  made.cols.assign(cols, cols + nnz);
+  made.chosen = fill_reducing_order(n, nnz, rows, cols, base, settings);
+  made.last_use = uses_;
+  Entry* slot = nullptr;
+  if (static_cast<int>(entries_.size()) < capacity_) {
+    slot = &entries_.emplace_back();
+  } else {
+    slot = &*std::min_element(entries_.begin(), entries_.end(), [](const Entry& a, const Entry& b) {
+      return a.last_use < b.last_use;
+    });
+  }
+  *slot = std::move(made);
+  ++computed_;
+  return slot->chosen;
+}
+
 void PermutedSymmetric::assign(int n, int nnz, const int* rows, const int* cols, int base,
                                const std::vector<int>& order) {
   DISCO_CHECK(n >= 0 && nnz >= 0 && static_cast<int>(order.size()) == n, "a matrix shape");

@@ -73,6 +73,36 @@ struct FillReducingOrder {
 FillReducingOrder fill_reducing_order(int n, int nnz, const int* rows, const int* cols, int base,
                                       const OrderingSettings& settings);
 
+// The fill_reducing_order of the last few structures, so that a structure met again is not
+// ordered again: by the other LDLᵀ solver (the pivoting one, when the LDLᵀ passes it a matrix)
+// or by a later solve (an IpoptSolver keeps one for all the solves of a start). An ordering is
+// a function of the pattern and the settings (AMD; METIS with a fixed seed), so a kept one is
+// exactly the one fill_reducing_order would compute again: the same bits. A structure is the
+// same when n, base, the settings and every triplet (rows[t], cols[t]) are. The least recently
+// used of `capacity` is dropped for a new one. Not thread-safe.
+class OrderingCache {
+ public:
+  explicit OrderingCache(int capacity = 4);
+  // The ordering of the structure; valid until the next call.
+  const FillReducingOrder& order(int n, int nnz, const int* rows, const int* cols, int base,
+                                 const OrderingSettings& settings);
+  int computed() const { return computed_; }  // orderings computed (structures met anew)
+  int reused() const { return reused_; }      // calls answered with a kept ordering
+
+ private:
+  struct Entry {
+    int n = 0, base = 0;
+    double nested_dissection_above = 0.0;
+    std::vector<int> rows, cols;
+    FillReducingOrder chosen;
+    long last_use = 0;
+  };
+  int capacity_;
+  std::vector<Entry> entries_;
+  long uses_ = 0;
+  int computed_ = 0, reused_ = 0;
+};
+
 class PermutedSymmetric {
  public:
   // Lays out the structure in the numbering of `order` (order[k]: the original row that is k-th).

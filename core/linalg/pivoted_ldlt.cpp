@@ -73,11 +73,10 @@ std::vector<int> postorder(const std::vector<int>& parent) {
 
 std::vector<int> PivotedLdlt::postponed_order(int n, int nnz, const int* rows, const int* cols,
                                               int base, int dual_from,
-                                              const OrderingSettings& ordering) {
-  FillReducingOrder chosen = fill_reducing_order(n, nnz, rows, cols, base, ordering);
-  const std::vector<int> fill = std::move(chosen.order);
-  chosen.order.clear();
-  ordering_ = chosen;
+                                              const FillReducingOrder& chosen) {
+  DISCO_CHECK(static_cast<int>(chosen.order.size()) == n, "an ordering of the structure");
+  const std::vector<int>& fill = chosen.order;
+  ordering_ = {{}, chosen.ordering, chosen.amd_flops, chosen.nested_dissection_flops};
   std::vector<int> position(n);
   for (int k = 0; k < n; ++k) position[fill[k]] = k;
   std::vector<int> earliest(n, n);  // a constraint row's earliest primal neighbour in `fill`
@@ -109,12 +108,19 @@ std::vector<int> PivotedLdlt::postponed_order(int n, int nnz, const int* rows, c
 
 void PivotedLdlt::analyse(int n, int nnz, const int* rows, const int* cols, int base,
                           int dual_from, const OrderingSettings& ordering) {
+  DISCO_CHECK(n >= 0 && nnz >= 0, "a matrix shape");
+  analyse(n, nnz, rows, cols, base, dual_from,
+          fill_reducing_order(n, nnz, rows, cols, base, ordering));
+}
+
+void PivotedLdlt::analyse(int n, int nnz, const int* rows, const int* cols, int base,
+                          int dual_from, const FillReducingOrder& chosen) {
   DISCO_CHECK(n >= 0 && nnz >= 0 && dual_from >= 0 && dual_from <= n, "a matrix shape");
   n_ = n;
   // The fill-reducing ordering with constraint rows postponed behind a primal neighbour, then a
   // postorder of its elimination tree (the same fill; fronts become contiguous and children's
   // update matrices lie on a stack in the order their parent needs them).
-  const std::vector<int> postponed = postponed_order(n, nnz, rows, cols, base, dual_from, ordering);
+  const std::vector<int> postponed = postponed_order(n, nnz, rows, cols, base, dual_from, chosen);
   a_.assign(n, nnz, rows, cols, base, postponed);
   const std::vector<int> post = postorder(elimination_tree(n, a_.ap(), a_.ai()).parent);
   std::vector<int> order(n);

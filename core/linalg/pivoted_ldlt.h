@@ -60,9 +60,12 @@ class PivotedLdlt {
   // Analyses an n × n symmetric structure given as nnz triplets numbered from `base` (either
   // triangle; an entry and its mirror are summed). Rows dual_from..n−1 are the constraint block
   // (zero diagonals expected; the ordering puts each behind a primal neighbour; n: none).
-  // The fill-reducing ordering is chosen as `ordering` says (fill_reducing_order).
+  // The fill-reducing ordering is chosen as `ordering` says (fill_reducing_order), or given:
+  // `chosen`, fill_reducing_order's answer for this structure (e.g. from an OrderingCache).
   void analyse(int n, int nnz, const int* rows, const int* cols, int base, int dual_from,
                const OrderingSettings& ordering);
+  void analyse(int n, int nnz, const int* rows, const int* cols, int base, int dual_from,
+               const FillReducingOrder& chosen);
 
   enum class Factorised {
     kDone,       // L and D computed; negative() is the inertia of A
@@ -112,7 +115,7 @@ class PivotedLdlt {
   // for AMD alone and 3.9e6 for AMD on the graph with each constraint row merged with a
   // primal neighbour, the ordering this one replaced.)
   std::vector<int> postponed_order(int n, int nnz, const int* rows, const int* cols, int base,
-                                   int dual_from, const OrderingSettings& ordering);
+                                   int dual_from, const FillReducingOrder& chosen);
   // Merges supernodes (first_, node_of) into larger fronts (relaxed amalgamation).
   void relax(const std::vector<int>& count, const std::vector<int>& parent,
              std::vector<int>& node_of);

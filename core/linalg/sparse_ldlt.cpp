@@ -17,12 +17,18 @@ constexpr double kPivotFloor = 1e-6;
 
 void SparseLdlt::analyse(int n, int nnz, const int* rows, const int* cols, int base,
                          int dual_from, const OrderingSettings& ordering) {
+  DISCO_CHECK(n >= 0 && nnz >= 0, "a matrix shape");
+  analyse(n, nnz, rows, cols, base, dual_from,
+          fill_reducing_order(n, nnz, rows, cols, base, ordering));
+}
+
+void SparseLdlt::analyse(int n, int nnz, const int* rows, const int* cols, int base,
+                         int dual_from, const FillReducingOrder& chosen) {
   DISCO_CHECK(n >= 0 && nnz >= 0 && dual_from >= 0 && dual_from <= n, "a matrix shape");
+  DISCO_CHECK(static_cast<int>(chosen.order.size()) == n, "an ordering of the structure");
   n_ = n;
-  FillReducingOrder chosen = fill_reducing_order(n, nnz, rows, cols, base, ordering);
   a_.assign(n, nnz, rows, cols, base, chosen.order);
-  chosen.order.clear();
-  ordering_ = chosen;
+  ordering_ = {{}, chosen.ordering, chosen.amd_flops, chosen.nested_dissection_flops};
   dual_.assign(n, 0);
   for (int k = 0; k < n; ++k) dual_[k] = a_.order()[k] >= dual_from ? 1 : 0;
   const std::vector<int>& ap = a_.ap();

@@ -79,10 +79,13 @@ class SparseLdlt {
   // Analyses the structure of an n × n symmetric matrix given as nnz triplets (rows[t], cols[t]),
   // numbered from `base` (1: Ipopt's triplets), entries of either triangle (an entry and its
   // mirror may both appear: they are summed). Rows dual_from..n−1 are the constraint block (their
-  // regularisation is negative). Orders it as `ordering` says (fill_reducing_order).
-  // Allocates everything the factorisations and solves need.
+  // regularisation is negative). Orders it as `ordering` says (fill_reducing_order), or as
+  // given: `chosen`, fill_reducing_order's answer for this structure (e.g. from an
+  // OrderingCache). Allocates everything the factorisations and solves need.
   void analyse(int n, int nnz, const int* rows, const int* cols, int base, int dual_from,
                const OrderingSettings& ordering);
+  void analyse(int n, int nnz, const int* rows, const int* cols, int base, int dual_from,
+               const FillReducingOrder& chosen);
 
   enum class Factorised {
     kDone,       // L and D computed; inertia() is that of S A S + R
