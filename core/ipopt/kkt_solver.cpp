@@ -306,7 +306,8 @@ class KktLinearSolver : public Ipopt::SparseSymLinearSolverInterface {
   const FillReducingOrder& ordering(const Index* ia, const Index* ja) {
     OrderingCache& cache = options_.orderings ? *options_.orderings : own_orderings_;
     const int computed = cache.computed();
-    const FillReducingOrder& chosen = cache.order(dim_, nonzeros_, ia, ja, 1, options_.ldlt.ordering);
+    const FillReducingOrder& chosen =
+        cache.order(dim_, nonzeros_, ia, ja, 1, options_.ldlt.ordering);
     counts_.orderings += cache.computed() - computed;
     return chosen;
   }
