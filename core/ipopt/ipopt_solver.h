@@ -156,7 +156,8 @@ struct KktCounts {
   // pivoting LDLᵀ instead of MUMPS (counted in factorisations too).
   int to_pivoted = 0;
   // Analyses of a structure by disco's LDLᵀ solvers (once per solve and solver) whose ordering
-  // is METIS's nested dissection rather than AMD (kkt.ldlt.ordering; core/linalg/permuted_symmetric.h).
+  // is METIS's nested dissection rather than AMD (kkt.ldlt.ordering;
+  // core/linalg/permuted_symmetric.h).
   int nested_dissection = 0;
   // Fill-reducing orderings computed: structures the IpoptSolver met for the first time (its
   // analyses of a structure met before reuse that ordering; permuted_symmetric.h, OrderingCache).
