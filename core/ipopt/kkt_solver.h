@@ -14,8 +14,9 @@
 // kkt.solver ldlt: disco's LDLᵀ (core/linalg/sparse_ldlt.h; analysed once per solve, at its
 // first factorisation, with the structure's fill-reducing ordering computed once per
 // IpoptSolver and shared by both LDLᵀ solvers: KktOptions::orderings; the constraint block is
-// Ipopt's rows of y_c and y_d, the last of the augmented system x, s, c, d). MUMPS's overhead per factorisation (11 ms on n ≈ 11 k for
-// 5 MFlop; ~6 ms for a diagonal matrix) is what the LDLᵀ saves (scripts/results/bench_kkt.md).
+// Ipopt's rows of y_c and y_d, the last of the augmented system x, s, c, d). MUMPS's overhead
+// per factorisation (11 ms on n ≈ 11 k for 5 MFlop; ~6 ms for a diagonal matrix) is what the
+// LDLᵀ saves (scripts/results/bench_kkt.md).
 //   - A factorisation whose inertia is not the one Ipopt asks for is answered "wrong inertia"
 //     at once, or, with kkt.ldlt.certificate.iterations > 0 (not the default: core/README.md,
 //     "Why the defaults"), only when that inertia is certified: the smallest |eigenvalue| of the regularised scaled matrix
