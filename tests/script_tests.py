@@ -22,6 +22,9 @@ results  with a real disco: scripts/bench_stress and scripts/bench_examples on o
          one; and scripts/bench_kkt on start 0 of A2 (a corpus it dumps with disco).
          scripts/bench_random: its generator (seeded, --kind objects), and a run of 2 scenes
          against disco itself (the files, the rows against the solution files, the summary).
+         scripts/bench_starts --others on a refused and a small stress scene, 2 at a time
+         against disco itself: refused rows, the same iterations and T_f as one at a time and
+         as the baseline (a start is deterministic), and the tables' note on wall times.
 """
 import argparse
 import json
@@ -246,6 +249,50 @@ def test_results(disco):
     check(run.lines[0].phase == "feasibility", f"the first solve is the feasibility phase ({run.lines[0].phase})")
 
 
+def read_csv_rows(path):
+    import csv
+    with open(path) as f:
+        return list(csv.DictReader(f))
+
+
+def test_bench_starts(disco):
+    """scripts/bench_starts --others --jobs: the other scenes' set, refused scenes, and answers
+    that do not depend on how many run at a time."""
+    from common.scenes import other_scenes
+    root = os.path.dirname(os.path.abspath(SCRIPTS))
+    others = other_scenes(root)
+    check({"stress/K_3", "stress/too_weak", "doorway", "A1", "A2"} <= set(others)
+          and all(os.path.isfile(os.path.join(root, p)) for p in others.values()),
+          f"other_scenes: every scene of configs/scenarios and configs/stress, A1, A2 ({len(others)})")
+    common = ["--disco", disco, "--others", "--scenes", "stress/too_weak,stress/K_3", "--starts", "0,1"]
+    two = os.path.join(WORK, "starts2")
+    r = run_script("bench_starts", *common, "--jobs", "2", "--baseline", disco, "--out", two,
+                   "--no-results")
+    check(r.returncode == 0, f"bench_starts --others --jobs 2 exits 0 ({r.returncode})"
+          + (r.stderr[-2000:] if r.returncode else ""))
+    one = os.path.join(WORK, "starts1")
+    r1 = run_script("bench_starts", *common, "--out", one, "--no-results")
+    check(r1.returncode == 0, f"bench_starts --others --jobs 1 exits 0 ({r1.returncode})")
+    if r.returncode or r1.returncode:
+        return
+    rows2, rows1 = read_csv_rows(os.path.join(two, "starts.csv")), read_csv_rows(os.path.join(one, "starts.csv"))
+    refused = [x for x in rows2 if x["scene"] == "stress/too_weak"]
+    check(len(refused) == 4 and all(x["status"] == "refused" for x in refused),
+          "a scene disco refuses (exit 2) gives refused rows, both binaries, both starts")
+    key = lambda x: (x["scene"], x["start"])  # noqa: E731
+    new2 = {key(x): (x["iterations"], x["T_f"]) for x in rows2 if x["binary"] == "new"}
+    base2 = {key(x): (x["iterations"], x["T_f"]) for x in rows2 if x["binary"] == "base"}
+    new1 = {key(x): (x["iterations"], x["T_f"]) for x in rows1}
+    k3 = [k for k in new1 if k[0] == "stress/K_3"]
+    check(len(k3) == 2 and all(new1[k][1] for k in k3), f"K_3's two starts solved ({[new1[k] for k in k3]})")
+    check(new2 == new1 == base2, "the same iterations and T_f 2 at a time, 1 at a time and as the baseline")
+    text = open(os.path.join(two, "starts.md")).read()
+    check("2 processes at a time (wall times not comparable with one at a time)" in text
+          and "not a speed measurement" in text, "with --jobs 2 the tables say the wall is not comparable")
+    check("Starts worse than the baseline by more than 1e-3 relative: 0 of 4" in text,
+          "against itself, no start worse")
+
+
 def test_random(disco):
     """scripts/bench_random: the generator is a function of its seed (the same text twice), a
     --kind objects scene has one object and a target for every robot, and a run against a
@@ -371,6 +418,7 @@ if MODE == "common":
 elif MODE == "results":
     DISCO = sys.argv[4]
     test_results(DISCO)
+    test_bench_starts(DISCO)
     test_random(DISCO)
     test_bench_kkt(sys.argv[5])
 else:

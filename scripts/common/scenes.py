@@ -9,3 +9,18 @@ START_SET = {
     "B3": "configs/scenarios/paper/B3.yaml",
     "contact": "configs/scenarios/three_robots_contact.yaml",
 }
+
+
+def other_scenes(root):
+    """The other starts' scenes (scripts/bench_starts --others): every scene in
+    configs/scenarios/ and configs/stress/, and paper A1 and A2, as {name: path from root};
+    a stress scene's name is stress/NAME."""
+    import glob
+    import os
+    out = {}
+    for folder, prefix in (("configs/scenarios", ""), ("configs/stress", "stress/")):
+        for path in sorted(glob.glob(os.path.join(root, folder, "*.yaml"))):
+            out[prefix + os.path.basename(path)[:-len(".yaml")]] = os.path.relpath(path, root)
+    for name in ("A1", "A2"):
+        out[name] = f"configs/scenarios/paper/{name}.yaml"
+    return out
