@@ -51,6 +51,7 @@
 #include "core/model/objective.h"
 #include "core/model/scene_yaml.h"
 #include "core/util/clock.h"
+#include "core/util/deterministic_heap.h"
 #include "core/util/errors.h"
 #include "core/util/interrupt.h"
 #include "core/util/provenance.h"
@@ -331,6 +332,9 @@ int run_solve(const SolveOptions& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Before anything allocates: Ipopt 3.11.9 can read a never-set value from fresh heap memory
+  // (core/util/deterministic_heap.h); this makes that value the same in every process.
+  disco::make_heap_deterministic();
   auto sink = std::make_shared<LiveLineSink>(
       std::make_shared<spdlog::sinks::stderr_color_sink_mt>());
   spdlog::set_default_logger(std::make_shared<spdlog::logger>("disco", sink));
