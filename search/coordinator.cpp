@@ -53,18 +53,57 @@ Coordinator::Coordinator(const SearchPlan& plan, const std::string& out_dir, std
       queue_(plan, time_limit, record_.done(), guess_class, screen, record_.screened_done()),
       incumbent_(plan.scenes.size(), kInf),
       improved_(plan.scenes.size(), false),
-      screen_(screen) {
+      screen_(screen),
+      early_(plan.scenes.size()) {
   for (std::size_t s = 0; s < plan.scenes.size(); ++s)  // a resumed run's bests
     if (const auto b = record_.best_value(static_cast<int>(s))) lower_incumbent(static_cast<int>(s), *b);
   advance_stages(seconds());  // a resumed run's scenes whose screens all ended
   record_.write_best(queue_, seconds(), interrupt_requested());
 }
 
+std::optional<Task> Coordinator::refine_task(int s, int k) const {
+  const std::string& name = plan_.scenes[s].scene.name;
+  const std::string file = record_.screened_file(name, k);
+  std::ifstream in(file);
+  json doc = in ? json::parse(in, nullptr, false) : json();
+  if (!doc.is_object()) {
+    spdlog::warn("{}: start {}'s screened answer {} cannot be read: it is not refined", name, k, file);
+    return std::nullopt;
+  }
+  Task t;
+  t.scene = s;
+  t.start = k;
+  t.stage = Stage::kRefine;
+  t.guess = std::move(doc);
+  return t;
+}
+
+void Coordinator::add_early_refines(int s) {
+  const SceneJob& job = plan_.scenes[s];
+  const std::map<int, StartOutcome> screens = record_.screened(s);
+  std::vector<Screened> ended;
+  for (const auto& [k, o] : screens)
+    if (is_final(o, job))
+      ended.push_back({k, o.certified() ? o.value : std::numeric_limits<double>::quiet_NaN(), ""});
+  for (int k : early_refine_choice(ended, job.starts, screen_.early_batch)) {
+    if (!early_[s].insert(k).second) continue;
+    const bool done = record_.done().count({s, k}) > 0;  // refined in an earlier run
+    const double value = screens.at(k).value;
+    spdlog::info("{}: early refine of start {} ({:.6f}: the best of screens {}-{}){}", job.scene.name, k,
+                 value, k / screen_.early_batch * screen_.early_batch,
+                 std::min(job.starts, (k / screen_.early_batch + 1) * screen_.early_batch) - 1,
+                 done ? ", ended in an earlier run" : "");
+    queue_.add_early_refine(s, done ? std::nullopt : refine_task(s, k));
+  }
+}
+
 void Coordinator::advance_stages(double now) {
   if (!screen_.on()) return;
   for (std::size_t i = 0; i < plan_.scenes.size(); ++i) {
     const int s = static_cast<int>(i);
-    if (queue_.refined(s) || queue_.screens_open(s, now)) continue;
+    if (queue_.refined(s)) continue;
+    if (screen_.early_batch > 0) add_early_refines(s);
+    if (queue_.screens_open(s, now)) continue;
     const std::string& name = plan_.scenes[i].scene.name;
     const std::map<int, StartOutcome> screens = record_.screened(s);
     std::vector<Screened> screened;
@@ -77,6 +116,9 @@ void Coordinator::advance_stages(double now) {
     // the screens it had then: they are recorded, and one cut short runs again.
     for (int k : record_.ran(s))
       if (std::find(chosen.begin(), chosen.end(), k) == chosen.end()) chosen.push_back(k);
+    // The starts refined early are not refined again.
+    chosen.erase(std::remove_if(chosen.begin(), chosen.end(), [&](int k) { return early_[s].count(k) > 0; }),
+                 chosen.end());
     std::vector<Task> tasks;
     std::string words;
     for (int k : chosen) {
@@ -84,22 +126,12 @@ void Coordinator::advance_stages(double now) {
       words += fmt::format("{}{} ({:.6f})", words.empty() ? "" : ", ", k,
                            it != screens.end() ? it->second.value : std::nan(""));
       if (record_.done().count({s, k})) continue;  // refined in an earlier run
-      const std::string file = record_.screened_file(name, k);
-      std::ifstream in(file);
-      json doc = in ? json::parse(in, nullptr, false) : json();
-      if (!doc.is_object()) {
-        spdlog::warn("{}: start {}'s screened answer {} cannot be read: it is not refined", name, k, file);
-        continue;
-      }
-      Task t;
-      t.scene = s;
-      t.start = k;
-      t.stage = Stage::kRefine;
-      t.guess = std::move(doc);
-      tasks.push_back(std::move(t));
+      if (auto t = refine_task(s, k)) tasks.push_back(std::move(*t));
     }
-    spdlog::info("{}: {} start(s) screened, refining {}", name, screened.size(),
-                 chosen.empty() ? std::string("none (no certified screen)") : words);
+    spdlog::info("{}: {} start(s) screened, refining {}{}", name, screened.size(),
+                 chosen.empty() ? std::string(early_[s].empty() ? "none (no certified screen)" : "none more")
+                                : words,
+                 early_[s].empty() ? std::string() : fmt::format(" ({} early)", early_[s].size()));
     queue_.add_refines(s, static_cast<int>(chosen.size()), tasks);
   }
 }

@@ -24,7 +24,9 @@
 //
 // Screening (search/screening.h): a screen's outcome never moves the incumbent. Once none of
 // a scene's screens is open, the coordinator chooses its refines (refine_choice over the
-// recorded screens) and queues them with their screened solution files. A rank that asks for
+// recorded screens) and queues them with their screened solution files; with early refines
+// (search.early_refine_batch) it queues each as soon as early_refine_choice decides it, and the
+// final choice skips the starts refined early. A rank that asks for
 // work while only refines still to come could give it some waits: rank 0's own worker in
 // await_work(), a worker rank by getting no reply until take_outbox() has a task (or kStop)
 // for it.
@@ -115,8 +117,14 @@ class Coordinator {
 
   // Lowers scene s's incumbent to `value` if that is lower (and marks it for take_outbox()).
   void lower_incumbent(int s, double value);
-  // Queues the refines of every scene whose screens are all closed (screening only).
+  // Queues the early refines decided so far and the refines of every scene whose screens are
+  // all closed (screening only).
   void advance_stages(double now);
+  // Scene s's early refines decided since the last call, queued (screening only).
+  void add_early_refines(int s);
+  // The refine of start k of scene s from its screened solution file; none (with a warning)
+  // if that file cannot be read.
+  std::optional<Task> refine_task(int s, int k) const;
   std::optional<Task> next_locked(int rank);
 
   const SearchPlan& plan_;
@@ -129,6 +137,7 @@ class Coordinator {
   std::vector<bool> improved_;     // per scene: incumbent lowered since take_outbox()
   ScreenSettings screen_;
   std::set<int> waiting_;          // worker ranks without a reply (waiting for refines)
+  std::vector<std::set<int>> early_;  // per scene: the starts chosen for an early refine
   std::condition_variable recorded_;  // notified at every record()
 };
 

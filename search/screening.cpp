@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <map>
 #include <set>
 
 #include "core/util/errors.h"
@@ -21,6 +23,8 @@ ScreenSettings screen_settings(const Settings& s) {
   if (out.refine_count < 1) refuse("search.refine_count", "must be >= 1");
   out.share = s.number("search.screen_share");
   if (!(out.share > 0 && out.share < 1)) refuse("search.screen_share", "must be above 0 and below 1");
+  out.early_batch = s.integer("search.early_refine_batch");
+  if (out.early_batch < 0) refuse("search.early_refine_batch", "must be >= 0 (0: no early refines)");
   return out;
 }
 
@@ -47,6 +51,27 @@ std::vector<int> refine_choice(std::vector<Screened> screened, int count) {
   }
   for (std::size_t i = 0; i < screened.size() && static_cast<int>(out.size()) < count; ++i)
     if (!taken[i]) out.push_back(screened[i].start);
+  return out;
+}
+
+std::vector<int> early_refine_choice(const std::vector<Screened>& ended, int starts, int batch) {
+  std::vector<int> out;
+  if (batch <= 0) return out;
+  std::map<int, double> value;  // start -> its screen's value (NaN: not certified)
+  for (const Screened& x : ended) value[x.start] = x.value;
+  double best = std::numeric_limits<double>::infinity();  // the earlier batches' best
+  for (int first = 0; first < starts; first += batch) {
+    const int end = std::min(first + batch, starts);
+    int chosen = -1;
+    for (int k = first; k < end; ++k) {
+      const auto it = value.find(k);
+      if (it == value.end()) return out;  // not ended yet: no later batch is decided either
+      if (std::isfinite(it->second) && (chosen < 0 || it->second < value[chosen])) chosen = k;
+    }
+    if (chosen < 0) continue;
+    if (value[chosen] < best) out.push_back(chosen);
+    best = std::min(best, value[chosen]);
+  }
   return out;
 }
 

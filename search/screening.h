@@ -12,6 +12,12 @@
 //            (a start of kind kGiven, as with --guess: search/trajectory.h), keeping the
 //            start's own schedule. Its outcome is the start's (stage "refine"): the scene's
 //            best is always a refined, full-N_t, certified answer.
+//   early    with search.early_refine_batch B > 0, refines also start while the scene is
+//            still screening (early_refine_choice): after every batch of B screens (starts
+//            0..B−1, B..2B−1, ...) has ended, the batch's best screen is refined at once if
+//            it is below every earlier batch's best. Under a time limit the screening share
+//            otherwise leaves the refines to its second part; the first good refine can
+//            then come a few screens into the search.
 //
 // The choice depends only on the screens' outcomes, so a screened search keeps the
 // guarantees of the deterministic mode (the same runs and best on 1 or 2 ranks, and after
@@ -31,6 +37,7 @@ struct ScreenSettings {
   double fraction = 0.0;  // 0: no screening (every start at full N_t, as without stages)
   int refine_count = 0;   // refines per scene, at most
   double share = 0.0;     // under a time limit: the share of it screens may use
+  int early_batch = 0;    // search.early_refine_batch: screens per batch (0: no early refines)
   bool on() const { return fraction > 0.0; }
 };
 // InputError naming the key for a value out of its range.
@@ -51,5 +58,14 @@ struct Screened {
 // its own each time), then the next best not yet chosen, until `count` are chosen or none is
 // left.
 std::vector<int> refine_choice(std::vector<Screened> screened, int count);
+
+// The early refines of a scene of `starts` starts, in the order they are decided, from its
+// screens with a final outcome (`ended`; value NaN: not certified). Batch b holds the screens of
+// starts b·batch .. min((b+1)·batch, starts)−1. Batches are decided in order, each once all of
+// its screens and the earlier batches' have ended: its best certified screen (lowest value, ties
+// to the lower start) is chosen if it is below the best certified screen of every earlier batch
+// (a batch without one chooses nothing). The first batch with a screen not yet ended stops the
+// decisions, so the answer depends only on the screens' outcomes, never on when they ended.
+std::vector<int> early_refine_choice(const std::vector<Screened>& ended, int starts, int batch);
 
 }  // namespace disco

@@ -98,7 +98,19 @@ void TaskQueue::add_refines(int s, int chosen, const std::vector<Task>& tasks) {
   if (sc.refined) return;
   sc.refined = true;
   total_ += chosen - std::min(screen_.refine_count, plan_.scenes[s].starts);
-  pending_.insert(pending_.begin() + static_cast<std::ptrdiff_t>(next_), tasks.begin(), tasks.end());
+  pending_.insert(pending_.begin() + refines_end(), tasks.begin(), tasks.end());
+}
+
+std::ptrdiff_t TaskQueue::refines_end() const {
+  std::size_t i = next_;
+  while (i < pending_.size() && pending_[i].stage == Stage::kRefine) ++i;
+  return static_cast<std::ptrdiff_t>(i);
+}
+
+void TaskQueue::add_early_refine(int s, const std::optional<Task>& task) {
+  if (scenes_[s].refined) return;
+  ++total_;
+  if (task) pending_.insert(pending_.begin() + refines_end(), *task);
 }
 
 bool TaskQueue::refines_to_come(double now) const {

@@ -13,12 +13,14 @@
 //
 // Screening (search/screening.h): the queue first holds every start's screen; a scene's
 // refines are added by the coordinator (add_refines) once none of its screens is open, and run
-// before the screens still pending. Under a time limit, screens are handed out only until
-// the screening share of it (search.screen_share) is used, and their budgets end there.
+// before the screens still pending; so are its early refines (add_early_refine), added one at
+// a time while it screens. Refines run in the order they were added. Under a time limit, screens are handed out only until the
+// screening share of it (search.screen_share) is used, and their budgets end there.
 //
 // Not thread-safe: search/coordinator.h guards it.
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <map>
 #include <string>
@@ -78,6 +80,9 @@ class TaskQueue {
   // Scene s's refines, to run next, in this order; `chosen` counts the refines of the choice
   // (those `tasks` leaves out ended in an earlier run). Fixes the scene's count in total().
   void add_refines(int s, int chosen, const std::vector<Task>& tasks);
+  // One early refine of scene s (search/screening.h), to run next; counted in total() whether
+  // it runs or not (none: it ended in an earlier run, or its screen's answer is missing).
+  void add_early_refine(int s, const std::optional<Task>& task);
   // Whether refines may still be added: a scene with screening whose refines are not, and
   // whose time limit (and the search's) has not passed. A rank then waits for work.
   bool refines_to_come(double now) const;
@@ -115,6 +120,8 @@ class TaskQueue {
   };
   // Screening: the search time at which screens of scene s stop being handed out (+inf: never).
   double screen_end(int s) const;
+  // Screening: where the next refine goes: after the refines pending (first in, first out).
+  std::ptrdiff_t refines_end() const;
   const SearchPlan& plan_;
   double time_limit_ = 0.0;
   ScreenSettings screen_;

@@ -41,7 +41,8 @@ killrandom) runs --deterministic.
                best of a clean run.
   MODE_screened  (determinism, resume, timelimit, killrandom): the same, as a screened search
                (search.screen_fraction 0.5, search.refine_count 2; search/README.md,
-               "Screening"), every start's screen and refine compared; timelimit_screened: on
+               "Screening"; but for timelimit_screened with early refines,
+               search.early_refine_batch 1), every start's screen and refine compared; timelimit_screened: on
                the simulated clock, a limit cuts the same runs twice, and --resume without it
                ends with the runs and best of a clean screened run.
   logging      logs go to stderr and results to files (stdout stays empty): the progress
@@ -71,8 +72,9 @@ ENV = dict(os.environ, OMP_NUM_THREADS="1")
 # Runs compared bit for bit (across ranks, with a clean run after a resume) are deterministic:
 # each start alone (the default of configs/disco.yaml, forced here). mpi2 and mpi8 share the
 # incumbent.
-DET = ["--deterministic"] + (["--set", "search.screen_fraction=0.5", "--set", "search.refine_count=2"]
-                             if SCREENED else [])
+EARLY_BATCH = 1 if SCREENED and MODE != "timelimit" else 0
+DET = ["--deterministic"] + (["--set", "search.screen_fraction=0.5", "--set", "search.refine_count=2",
+                              "--set", f"search.early_refine_batch={EARLY_BATCH}"] if SCREENED else [])
 SHARED = ["--set", "search.share_incumbent=true"]
 
 
@@ -137,6 +139,22 @@ def refine_choice(screens, count):
     return out
 
 
+def early_refine_choice(screens, batch):
+    """search/screening.h's early_refine_choice on a scene whose screens have all ended: each
+    batch's best certified screen (ties to the lower start) if below every earlier batch's best."""
+    by_start = {r["start"]: r["T_f"] for r in screens}
+    out, best_before = [], float("inf")
+    for first in range(0, len(by_start), batch) if batch > 0 else []:
+        certified = [(by_start[k], k) for k in range(first, min(first + batch, len(by_start)))
+                     if by_start[k] is not None]
+        if certified:
+            value, k = min(certified)
+            if value < best_before:
+                out.append(k)
+            best_before = min(best_before, value)
+    return out
+
+
 def check_consistent(out, label, timing=False, limited=False):
     rs, b = runs(out), best(out)
     # A refine from the answer of a screen cut short is not final either: --resume runs the
@@ -162,7 +180,7 @@ def check_consistent(out, label, timing=False, limited=False):
                       for r in screens if r["T_f"] is not None),
                   f"{label}: {scene}: every certified screen's answer is in screened/")
             refined = {r["start"] for r in rs if r["scene"] == scene and r["stage"] == "refine"}
-            chosen = refine_choice(screens, 2)
+            chosen = refine_choice(screens, 2) + early_refine_choice(screens, EARLY_BATCH)
             # A time limit may have made an earlier run refine others too (from fewer screens).
             check(set(chosen) <= refined and (limited or refined == set(chosen)),
                   f"{label}: {scene}: refined {sorted(refined)}, the choice {chosen}")

@@ -1,8 +1,8 @@
 // A screened search's bookkeeping without solves (search/screening.h, search/task_queue.h,
 // search/coordinator.h): the screen's steps, the choice of refines, the settings' ranges, and
 // a search driven through the coordinator's message protocol with made-up outcomes: screens
-// first, refines once every screen has ended (a rank asking in between waits), the best only
-// from refines, and --resume across the two stages.
+// first, refines once every screen has ended (a rank asking in between waits), early refines
+// between batches of screens, the best only from refines, and --resume across the two stages.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -61,6 +61,27 @@ TEST(Screening, RefinesAreTheBestOfEachClassFirstThenTheNextBest) {
   EXPECT_TRUE(refine_choice({{0, kNaN, ""}}, 3).empty());
 }
 
+TEST(Screening, EarlyRefinesAreEachBatchsBestWhenBelowEveryEarlierBatchs) {
+  // Batches of 2: {0, 1} best 1 (4.0): chosen. {2, 3} best 2 (4.5, 3 uncertified): not below
+  // 4.0. {4, 5} a tie at 3.0, to the lower start: 4. {6} alone, 2.0: chosen.
+  const std::vector<Screened> ended = {{0, 5.0, ""}, {1, 4.0, ""}, {2, 4.5, ""}, {3, kNaN, ""},
+                                       {4, 3.0, ""}, {5, 3.0, ""}, {6, 2.0, ""}};
+  EXPECT_EQ(early_refine_choice(ended, 7, 2), (std::vector<int>{1, 4, 6}));
+  // The same screens in another order: the same choice.
+  std::vector<Screened> shuffled(ended.rbegin(), ended.rend());
+  EXPECT_EQ(early_refine_choice(shuffled, 7, 2), (std::vector<int>{1, 4, 6}));
+  // Screen 3 not ended: batch 1 undecided, so nothing after it either (whatever ended there).
+  std::vector<Screened> open = ended;
+  open.erase(open.begin() + 3);
+  EXPECT_EQ(early_refine_choice(open, 7, 2), (std::vector<int>{1}));
+  // A batch without a certified screen chooses nothing and moves no bar.
+  EXPECT_EQ(early_refine_choice({{0, kNaN, ""}, {1, kNaN, ""}, {2, 7.0, ""}}, 3, 2), (std::vector<int>{2}));
+  // Batches of 1: every screen below all those before it (a running record).
+  EXPECT_EQ(early_refine_choice({{0, 3.0, ""}, {1, 4.0, ""}, {2, 2.0, ""}, {3, 2.0, ""}, {4, 1.0, ""}}, 5, 1),
+            (std::vector<int>{0, 2, 4}));
+  EXPECT_TRUE(early_refine_choice(ended, 7, 0).empty()) << "0: no early refines";
+}
+
 TEST(Screening, BadSettingsAreRefusedNamingTheKey) {
   const auto message = [](const std::string& o) {
     Settings s = Settings::load(default_settings_path());
@@ -76,16 +97,18 @@ TEST(Screening, BadSettingsAreRefusedNamingTheKey) {
   EXPECT_NE(message("search.screen_fraction=-0.1").find("search.screen_fraction"), std::string::npos);
   EXPECT_NE(message("search.refine_count=0").find("search.refine_count"), std::string::npos);
   EXPECT_NE(message("search.screen_share=1").find("search.screen_share"), std::string::npos);
+  EXPECT_NE(message("search.early_refine_batch=-1").find("search.early_refine_batch"), std::string::npos);
   EXPECT_EQ(message("search.screen_fraction=0.5"), "");
   Settings s = Settings::load(default_settings_path());
   EXPECT_FALSE(screen_settings(s).on()) << "the default is today's search";
 }
 
-ScreenSettings screening(int refine_count) {
+ScreenSettings screening(int refine_count, int early_batch = 0) {
   ScreenSettings s;
   s.fraction = 0.5;
   s.refine_count = refine_count;
   s.share = 0.5;
+  s.early_batch = early_batch;
   return s;
 }
 
@@ -261,6 +284,44 @@ TEST(ScreenedSearch, ARefineOfAScreenCutShortRunsAgainAfterItsScreenOnResume) {
   const json best = json::parse(std::ifstream(dir + "/best.json"));
   EXPECT_EQ(best["starts_finished"], 6);
   EXPECT_EQ(best["scenes"]["one_robot_axis"]["start"], 1);
+}
+
+// Early refines in batches of 2 (screened T_f 3.0, 4.0 | 2.0, 2.5): after screens 0 and 1, start
+// 0 is refined ahead of screens 2 and 3; after those, start 2 (below 3.0), then the final choice
+// (starts 2 and 1, the best of each class) without start 2 again. A resume after the first
+// refine runs the rest and nothing twice.
+TEST(ScreenedSearch, EarlyRefinesRunBetweenBatchesOfScreensAndNothingTwiceAfterAResume) {
+  const SearchPlan plan = load_search_plan({config("scenarios/one_robot_axis.yaml")}, 4, 1, {});
+  using Handed = std::vector<std::pair<Stage, int>>;
+  const Handed all = {{Stage::kScreen, 0}, {Stage::kScreen, 1}, {Stage::kRefine, 0}, {Stage::kScreen, 2},
+                      {Stage::kScreen, 3}, {Stage::kRefine, 2}, {Stage::kRefine, 1}};
+  {
+    const std::string dir = fresh_dir("early");
+    Coordinator c(plan, dir, 1, 0.0, false, false, {}, screening(2, 2));
+    EXPECT_EQ(run_all(plan, c, [](const Task&, json&) {}), all);
+    EXPECT_FALSE(c.await_work());
+    c.finish();
+    const json best = json::parse(std::ifstream(dir + "/best.json"));
+    EXPECT_EQ(best["starts_total"], 7);
+    EXPECT_EQ(best["starts_finished"], 7);
+    EXPECT_EQ(best["scenes"]["one_robot_axis"]["start"], 0) << "refined T_f 5 + start: start 0's is lowest";
+  }
+  const std::string dir = fresh_dir("early_resume");
+  {  // Killed after the early refine of start 0.
+    Coordinator c(plan, dir, 1, 0.0, false, false, {}, screening(2, 2));
+    while (const auto t = c.next(0)) {
+      const double T_f = t->stage == Stage::kScreen ? screened_T_f(t->start) : refined_T_f(t->start);
+      const json m = outcome_message(plan, *t, T_f, class_of(t->start));
+      c.record(StartOutcome::from_json(m["outcome"]), &m["solution"]);
+      if (t->stage == Stage::kRefine) break;
+    }
+  }
+  Coordinator again(plan, dir, 1, 0.0, true, false, {}, screening(2, 2));
+  EXPECT_EQ(run_all(plan, again, [](const Task&, json&) {}), Handed(all.begin() + 3, all.end()));
+  again.finish();
+  const json best = json::parse(std::ifstream(dir + "/best.json"));
+  EXPECT_EQ(best["starts_total"], 7);
+  EXPECT_EQ(best["starts_finished"], 7);
 }
 
 TEST(ScreenedSearch, WithoutScreeningEveryTaskIsAFullStart) {
