@@ -41,7 +41,7 @@ killrandom) runs --deterministic.
                best of a clean run.
   MODE_screened  (determinism, resume, timelimit, killrandom): the same, as a screened search
                (search.screen_fraction 0.5, search.refine_count 2; search/README.md,
-               "Screening"; but for timelimit_screened with early refines,
+               "Screening"; but for resume_screened with early refines,
                search.early_refine_batch 1), every start's screen and refine compared; timelimit_screened: on
                the simulated clock, a limit cuts the same runs twice, and --resume without it
                ends with the runs and best of a clean screened run.
@@ -72,7 +72,7 @@ ENV = dict(os.environ, OMP_NUM_THREADS="1")
 # Runs compared bit for bit (across ranks, with a clean run after a resume) are deterministic:
 # each start alone (the default of configs/disco.yaml, forced here). mpi2 and mpi8 share the
 # incumbent.
-EARLY_BATCH = 1 if SCREENED and MODE != "timelimit" else 0
+EARLY_BATCH = 1 if SCREENED and MODE != "resume" else 0
 DET = ["--deterministic"] + (["--set", "search.screen_fraction=0.5", "--set", "search.refine_count=2",
                               "--set", f"search.early_refine_batch={EARLY_BATCH}"] if SCREENED else [])
 SHARED = ["--set", "search.share_incumbent=true"]
