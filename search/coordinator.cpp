@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <cstdio>
 #include <fstream>
@@ -32,6 +33,13 @@ std::string outcome_words(const StartOutcome& o) {
       return fmt::format("dominated at {} (another start reached {:.6f})", value, o.incumbent);
     default: return to_string(o.status);
   }
+}
+
+// A screen's outcome as the refine choices see it (its class key left out unless `with_class`).
+Screened screened_of(int k, const StartOutcome& o, bool with_class) {
+  const std::string key =
+      with_class && o.best_class.is_object() ? o.best_class.value("key", "") : std::string();
+  return {k, o.certified() ? o.value : std::numeric_limits<double>::quiet_NaN(), key};
 }
 
 std::string clock_text(double s) {
@@ -83,8 +91,7 @@ void Coordinator::add_early_refines(int s) {
   const std::map<int, StartOutcome> screens = record_.screened(s);
   std::vector<Screened> ended;
   for (const auto& [k, o] : screens)
-    if (is_final(o, job))
-      ended.push_back({k, o.certified() ? o.value : std::numeric_limits<double>::quiet_NaN(), ""});
+    if (is_final(o, job)) ended.push_back(screened_of(k, o, false));
   for (int k : early_refine_choice(ended, job.starts, screen_.early_batch)) {
     if (!early_[s].insert(k).second) continue;
     const bool done = record_.done().count({s, k}) > 0;  // refined in an earlier run
@@ -107,10 +114,7 @@ void Coordinator::advance_stages(double now) {
     const std::string& name = plan_.scenes[i].scene.name;
     const std::map<int, StartOutcome> screens = record_.screened(s);
     std::vector<Screened> screened;
-    for (const auto& [k, o] : screens) {
-      const std::string key = o.best_class.is_object() ? o.best_class.value("key", "") : "";
-      screened.push_back({k, o.certified() ? o.value : std::numeric_limits<double>::quiet_NaN(), key});
-    }
+    for (const auto& [k, o] : screens) screened.push_back(screened_of(k, o, true));
     std::vector<int> chosen = refine_choice(screened, screen_.refine_count);
     // A resumed run also finishes the refines an earlier run chose under a time limit, from
     // the screens it had then: they are recorded, and one cut short runs again.
