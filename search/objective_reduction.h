@@ -41,10 +41,13 @@
 //      three_robots_contact took 1471 iterations / 48 s to 2.307668 s instead
 //      of 2909 / 105 s to 2.301855 s; paper B2 went the slower way. Default 0.
 //   A local optimum found inside the loop (an early minimisation that
-//   converged, or a minimising step strictly inside its bound) is not the
-//   end: the loop probes below it with a fixed step, as the paper's reduction
-//   does, and stops when that fails; a probe that succeeds continues the
-//   homotopy from there.
+//   converged, or a minimising step strictly inside its bound) is probed
+//   below with a fixed step, as the paper's reduction steps down until a
+//   step fails, and the loop stops when that fails; a probe that succeeds
+//   continues the homotopy from there. Below a minimisation's optimum only
+//   with reduction.probe_after_minimize (off by default: no such probe
+//   succeeded on 234 starts, and they cost 5-7 % of the iterations;
+//   search/README.md, "Why the defaults"): without it the loop ends there.
 //   Measured on paper A3 (start 0): 935 iterations with the minimisation only
 //   at the end, 436 with it after the first failure, the same optimum; B2:
 //   2263 and 1177.
@@ -92,7 +95,8 @@
 // The stall rule (elastic.stall, off by default; core/elastic/elastic_solver.h, Stall). A
 //   minimisation (step 3 and its early call, never a step or a segment) that creeps at a
 //   settled iterate ends there and is judged as if converged; certified, it counts as a local
-//   optimum for the loop (probed below) but its point is not shown stationary
+//   optimum for the loop (the end, or probed below with reduction.probe_after_minimize) but its
+//   point is not shown stationary
 //   (SolveRecord::stalled); not certified, it is salvaged as at max_iter.
 // Minimisations (reduction.minimize_duals, kElastic; step 3 and its early call, never a step,
 //   segment or salvage). A minimisation starts from the best point, the optimum of a fixed step

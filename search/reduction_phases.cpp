@@ -109,6 +109,9 @@ std::string stop_line(StopReason reason, const ReductionSettings& cfg) {
                          cfg.min_rate);
     case StopReason::kLocalOptimum:
       return "stopped: a local optimum (a fixed step below it found nothing better)";
+    case StopReason::kMinimized:
+      return "stopped: a local optimum (a minimisation converged; not probed below: "
+             "reduction.probe_after_minimize is false)";
     case StopReason::kDominated:
       return fmt::format("stopped: dominated (its best stayed above the best another start found, "
                          "for reduction.dominated_after = {} steps or until no reduction.rate "
@@ -153,7 +156,8 @@ ReductionState next_phase(const ReductionState& state, const PhaseOutcome& o,
       if (o.failed) return admit(with_phase(s, Phase::kFixedStep), o, cfg);
       if (o.improved) {
         s.rate = std::min(s.rate * cfg.grow, kMaxRate);
-        // Converged strictly inside its bound: a local optimum, probed with fixed steps.
+        // Converged strictly inside its bound: a local optimum of a short step, probed with
+        // fixed steps (always: a probe may leave it, e.g. stress/K_3 start 2).
         s.minimized = o.inside_bound;
         return admit(with_phase(s, o.inside_bound ? Phase::kProbe : Phase::kMinimizingStep), o,
                      cfg);
@@ -179,8 +183,10 @@ ReductionState next_phase(const ReductionState& state, const PhaseOutcome& o,
       }
       return admit(s, o, cfg);
     case Phase::kEarlyMinimize:
-      // Converged: a local optimum, probed below. Cut at minimize_iterations: it changed
-      // nothing, the fixed steps go on and the loop minimises again at its end.
+      // Converged: a local optimum, probed below with reduction.probe_after_minimize, else
+      // the end. Cut at minimize_iterations: it changed nothing, the fixed steps go on and
+      // the loop minimises again at its end.
+      if (o.solved && !cfg.probe_after_minimize) return finish(s, o, StopReason::kMinimized);
       if (o.solved) return admit(with_phase(s, Phase::kProbe), o, cfg);
       if (cfg.minimize_iterations > 0) s.minimized = false, s.cut_short = true;
       return admit(with_phase(s, Phase::kFixedStep), o, cfg);

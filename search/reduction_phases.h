@@ -12,6 +12,8 @@
 //   kFixedStep --failed, first time--> kEarlyMinimize --converged--> kProbe
 //                                                     --not converged--> kFixedStep
 //   kProbe --new best--> kFixedStep;  --no new best--> kDone
+//   Without reduction.probe_after_minimize (the default) an early minimisation that
+//   converged ends the loop: its arrow into kProbe goes to kDone (stop reason kMinimized).
 //   any step, before it runs: past the time limit -> kDone; max_solves steps made, or no rate
 //   >= min_rate keeps the bound above the smallest horizon -> kFinalMinimize (fixed steps
 //   that have not been minimised since their last new best; any phase with minimize_last)
@@ -60,6 +62,8 @@ enum class StopReason {
   kMinRate,          // the rate fell below reduction.min_rate (or no rate >= it keeps the
                      // bound above the smallest horizon)
   kLocalOptimum,     // a fixed step below a local optimum (a probe) gave nothing better
+  kMinimized,        // a minimisation converged (not probed below without
+                     // reduction.probe_after_minimize)
   kDominated,        // its best stayed above the scene's incumbent (another start's best) for
                      // reduction.dominated_after steps in a row, or no rate was left to aim
                      // below it

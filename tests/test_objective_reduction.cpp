@@ -272,7 +272,7 @@ TEST(ObjectiveReduction, AStalledMinimisationIsALocalOptimumButNotShownStationar
   DefaultSolvers d({kIpoptsOwnFactorisations,  // a fixed step fails: a minimisation follows
                     "elastic.stall.after=5", "elastic.stall.window=1", "elastic.stall.decrease=0.01",
                     "elastic.stall.mu=1", "elastic.stall.infeasibility=1",
-                    "reduction.minimize_zeta=0"});
+                    "reduction.minimize_zeta=0", "reduction.probe_after_minimize=true"});
   d.schedule.minimizer = Minimizer::kElastic;
   const ReductionResult result = reduce_objective(problem, d.solver, d.schedule);
   print(result);
@@ -397,7 +397,7 @@ TEST(ObjectiveReduction, AMinimisationStartsWeakAndFallsBackUncertified) {
 }
 
 TEST(ObjectiveReduction, ALocalOptimumEndsTheLoopOnceAProbeBelowItFails) {
-  // A minimising step that converges strictly inside its bound, or a
+  // With reduction.probe_after_minimize: a minimising step that converges strictly inside its bound, or a
   // `minimize` phase that converges, is a local optimum: at most one fixed
   // step follows it, and if that fails it is the last solve.
   for (const char* name : {"one_robot_axis", "two_robots_swap_avoid"}) {
@@ -405,7 +405,7 @@ TEST(ObjectiveReduction, ALocalOptimumEndsTheLoopOnceAProbeBelowItFails) {
     RobotProblem problem(scene);
     // The elastic minimiser: its converged "minimize" solve is the local optimum checked here
     // (the branch minimiser's are checked in TheBranchMinimizerDescends...).
-    DefaultSolvers d;
+    DefaultSolvers d({"reduction.probe_after_minimize=true"});
     d.schedule.minimizer = Minimizer::kElastic;
     const ReductionResult result = reduce_objective(problem, d.solver, d.schedule);
     std::printf("%s\n", name);
@@ -441,6 +441,38 @@ TEST(ObjectiveReduction, ALocalOptimumEndsTheLoopOnceAProbeBelowItFails) {
       EXPECT_EQ(result.solves.back().kind, SolveKind::kFixedStep) << name << ": no probe below the optimum";
     }
   }
+}
+
+// reduction.probe_after_minimize false (the default): a minimisation that converges is the
+// loop's last solve. With the setting the same run makes the same solves up to it, then a
+// probe below it (which fails on this scene), and ends at the same best.
+TEST(ObjectiveReduction, WithoutProbingAConvergedMinimisationIsTheLastSolve) {
+  const Scene scene = scenario("two_robots_swap_avoid", {"steps=20"});
+  RobotProblem problem(scene);
+  DefaultSolvers d({kIpoptsOwnFactorisations});  // a fixed step fails: a minimisation follows
+  d.schedule.minimizer = Minimizer::kElastic;
+  ASSERT_FALSE(d.schedule.probe_after_minimize) << "configs/disco.yaml";
+  const ReductionResult result = reduce_objective(problem, d.solver, d.schedule);
+  print(result);
+  ASSERT_TRUE(result.found);
+  const SolveRecord& last = result.solves.back();
+  EXPECT_EQ(last.kind, SolveKind::kMinimize);
+  EXPECT_EQ(last.status, MpccStatus::kSolved);
+  EXPECT_EQ(result.stop, StopReason::kMinimized);
+
+  DefaultSolvers probing({kIpoptsOwnFactorisations, "reduction.probe_after_minimize=true"});
+  probing.schedule.minimizer = Minimizer::kElastic;
+  const ReductionResult probed = reduce_objective(problem, probing.solver, probing.schedule);
+  print(probed);
+  ASSERT_EQ(probed.solves.size(), result.solves.size() + 1);
+  for (size_t k = 0; k < result.solves.size(); ++k) {
+    EXPECT_EQ(probed.solves[k].kind, result.solves[k].kind) << "solve " << k;
+    EXPECT_EQ(probed.solves[k].T_f, result.solves[k].T_f) << "solve " << k;
+  }
+  EXPECT_EQ(probed.solves.back().kind, SolveKind::kFixedStep);
+  EXPECT_LT(probed.solves.back().bound, last.T_f);
+  EXPECT_FALSE(probed.solves.back().improved);
+  EXPECT_EQ(probed.best_value, result.best_value);
 }
 
 // A fixed step fixes T_f, the whole objective: the elastic NLP then minimises eps alone

@@ -7,9 +7,11 @@
 namespace disco {
 namespace {
 
+// With reduction.probe_after_minimize: the transitions below a local optimum
+// (AConvergedMinimisationEndsTheLoopWithoutProbing has the default's).
 ReductionSettings schedule() {
   return {.rate = 0.05, .grow = 2.0, .shrink = 0.5, .min_rate = 0.01, .max_solves = 10,
-          .step_iterations = 60};
+          .step_iterations = 60, .probe_after_minimize = true};
 }
 
 ReductionState in(Phase phase, double rate = 0.05) {
@@ -250,6 +252,40 @@ TEST(ReductionPhases, AnUnconvergedEarlyMinimisationGoesOnWithFixedSteps) {
   EXPECT_EQ(s.phase, Phase::kFixedStep);
   EXPECT_FALSE(s.minimized);
   EXPECT_TRUE(s.cut_short);
+}
+
+// reduction.probe_after_minimize false (the default): a minimisation that converged ends the
+// loop, with no final minimisation (it was just minimised); a minimising step that converged
+// inside its bound is still probed below, and everything else is as with the setting.
+TEST(ReductionPhases, AConvergedMinimisationEndsTheLoopWithoutProbing) {
+  ReductionSettings off = schedule();
+  off.probe_after_minimize = false;
+  ReductionState s = next_phase(in(Phase::kEarlyMinimize), improved(true), off);
+  EXPECT_EQ(s.phase, Phase::kDone);
+  EXPECT_EQ(s.stop, StopReason::kMinimized);
+  EXPECT_EQ(next_phase(in(Phase::kEarlyMinimize), improved(true), schedule()).phase,
+            Phase::kProbe);
+  // A start from a trajectory: its first minimisation converged, and that is its answer.
+  ReductionSettings given = off;
+  given.horizon = 12.0;
+  given.guess_minimize = true;
+  s = next_phase(next_phase(begin_reduction(given), improved(), given), improved(true), given);
+  EXPECT_EQ(s.phase, Phase::kDone);
+  EXPECT_EQ(s.stop, StopReason::kMinimized);
+  // A minimising step that converged inside its bound: probed below, as with the setting.
+  s = next_phase(in(Phase::kMinimizingStep), improved(true), off);
+  EXPECT_EQ(s.phase, Phase::kProbe);
+  EXPECT_TRUE(s.minimized);
+  // The rest as with the setting.
+  EXPECT_EQ(next_phase(in(Phase::kMinimizingStep), improved(false), off).phase,
+            Phase::kMinimizingStep);
+  EXPECT_EQ(next_phase(in(Phase::kEarlyMinimize), failed(), off).phase, Phase::kFixedStep);
+  const ReductionState fixed = in(Phase::kFixedStep);
+  EXPECT_EQ(next_phase(fixed, no_gain(), off).phase, Phase::kEarlyMinimize);
+  EXPECT_EQ(next_phase(fixed, improved(), off).phase, Phase::kFixedStep);
+  EXPECT_EQ(stop_line(StopReason::kMinimized, off),
+            "stopped: a local optimum (a minimisation converged; not probed below: "
+            "reduction.probe_after_minimize is false)");
 }
 
 TEST(ReductionPhases, AProbeThatFailsEndsTheLoop) {

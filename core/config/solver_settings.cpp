@@ -187,6 +187,7 @@ ReductionSettings reduction_settings(const Settings& s) {
   r.max_solves = integer_at_least(s, "reduction.max_solves", 0);
   r.step_iterations = integer_at_least(s, "reduction.step_iterations", 1);
   r.minimize_iterations = integer_at_least(s, "reduction.minimize_iterations", 0);
+  r.probe_after_minimize = s.boolean("reduction.probe_after_minimize");
   r.cold_minimize = choice<bool>(s, "reduction.minimize_duals", {{"cold", true}, {"warm", false}});
   r.minimize_zeta = non_negative(s, "reduction.minimize_zeta");
   r.minimizer = choice<Minimizer>(s, "reduction.minimize",

@@ -54,6 +54,9 @@ struct ReductionSettings {
   int step_iterations = 0;  // cap on a minimising step before switching to fixed
                             // steps; kBranch: also Ipopt iterations per elastic segment
   int minimize_iterations = 0;  // kElastic: cap on the early minimisation (step 3); 0 = none
+  // A minimisation that converged inside the loop is probed below with a fixed step (true),
+  // or ends the loop (false); search/reduction_phases.h.
+  bool probe_after_minimize = false;
   // kElastic: a minimisation starts from the best point's primal values only, its duals cold
   // (ElasticRequest::cold_start); false: from its multipliers too.
   bool cold_minimize = false;
