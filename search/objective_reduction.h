@@ -120,6 +120,8 @@
 //   set and the elastic NLP minimises eps alone, whatever zeta: a fixed step that converges
 //   with complementarity not tight ends there (ElasticRequest::objective_fixed), without the
 //   zeta rule's raises, which only rescale the objective (polish is still tried below 1e-2).
+//   One that ends tight below elastic.polish_fixed_above is not polished
+//   (ElasticSettings::polish_fixed_above): certified as it stands, at its fixed J.
 //   One whose eps has stagnated far from tight ends there, as not tight (elastic.stagnation,
 //   core/elastic/elastic_solver.h): a fixed step that fails leaves nothing behind, so a cut
 //   that only shortens a failure changes nothing else in the loop.

@@ -791,9 +791,12 @@ TEST_P(MpccFixedObjective, EndsNotTightAfterOneSolveWithoutRaisingZeta) {
 // Where complementarity can be tight, the request changes nothing: solved by the first
 // elastic solve (and polish), on the branch y = 0. (From a symmetric start, x = y,
 // Ipopt stops at the stationary point (0.5, 0.5) of eps = x y on x + y = 1 with either rule.)
+// (With polish_fixed_above 0: every tight point polished, as under the zeta rule.)
 TEST_P(MpccFixedObjective, SolvesATightProblemAsTheZetaRuleDoes) {
   const auto [form, polish] = GetParam();
-  const auto [once, rule] = solve_both_ways(fixed_objective_problem(true), settings_for(form, polish));
+  ElasticSettings s = settings_for(form, polish);
+  s.polish_fixed_above = 0.0;
+  const auto [once, rule] = solve_both_ways(fixed_objective_problem(true), s);
   SCOPED_TRACE("objective_fixed: " + describe(once) + "\nzeta rule: " + describe(rule));
   ASSERT_EQ(once.status, MpccStatus::kSolved);
   ASSERT_EQ(rule.status, MpccStatus::kSolved);
@@ -805,6 +808,49 @@ TEST_P(MpccFixedObjective, SolvesATightProblemAsTheZetaRuleDoes) {
   // No raise was due, so both took the same path: the same point, bit for bit.
   EXPECT_EQ((once.z - rule.z).cwiseAbs().maxCoeff(), 0.0);
   EXPECT_NEAR(once.objective, 2.0, 1e-12);
+}
+
+// ElasticSettings::polish_fixed_above: a fixed objective's point that ends tight below it is
+// certified as it stands, without polish; the same solve under the zeta rule (an objective
+// that is not fixed) is polished, and with the setting at 0 so is the fixed one. The elastic
+// solve before polish is the same in all three, bit for bit. (The relaxed form's homotopy
+// ends at the barrier level mu = barrier_ratio * sigma_min, its point above the threshold:
+// polished as always.)
+TEST_P(MpccFixedObjective, ATightFixedPointBelowTheThresholdIsNotPolished) {
+  const auto [form, polish] = GetParam();
+  ElasticSettings s = settings_for(form, polish);
+  s.polish_fixed_above = 1e-8;
+  ElasticSettings always = s;
+  always.polish_fixed_above = 0.0;
+  const PolynomialProgram p = fixed_objective_problem(true);
+  const auto [once, rule] = solve_both_ways(p, s);
+  const auto [polished, unused] = solve_both_ways(p, always);
+  SCOPED_TRACE("fixed: " + describe(once) + "\nzeta rule: " + describe(rule) +
+               "\nfixed, always polished: " + describe(polished));
+  ASSERT_EQ(once.status, MpccStatus::kSolved);
+  ASSERT_EQ(rule.status, MpccStatus::kSolved);
+  ASSERT_EQ(polished.status, MpccStatus::kSolved);
+  if (form == ElasticFormulation::kRelaxed) {
+    EXPECT_TRUE(once.polished);
+    EXPECT_EQ(once.nlp_solves, polished.nlp_solves);
+    EXPECT_EQ((once.z - polished.z).cwiseAbs().maxCoeff(), 0.0);
+    return;
+  }
+  EXPECT_FALSE(once.polished);
+  EXPECT_EQ(once.nlp_solves, 1);
+  EXPECT_LE(once.certificate.max_complementarity, 1e-8);
+  EXPECT_LE(once.certificate.max_violation, 1e-6);
+  EXPECT_NEAR(once.objective, 2.0, 1e-12);
+  EXPECT_EQ(rule.polished, polish);
+  EXPECT_EQ(polished.polished, polish);
+  EXPECT_EQ(polished.nlp_solves, polish ? 2 : 1);
+  EXPECT_EQ((once.elastic_point.z - polished.elastic_point.z).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ((once.elastic_point.z - rule.elastic_point.z).cwiseAbs().maxCoeff(), 0.0);
+  // Above the threshold the point is polished as before.
+  ElasticSettings strict = s;
+  strict.polish_fixed_above = 0.1 * once.certificate.max_complementarity;
+  const auto [above, unused2] = solve_both_ways(p, strict);
+  EXPECT_EQ(above.polished, polish);
 }
 
 // ElasticSettings::Stagnation: a fixed step's eps that stopped falling far from tight ends the

@@ -151,6 +151,7 @@ ElasticSettings elastic_settings(const Settings& s) {
   e.complementarity_tol = positive(s, "elastic.complementarity_tolerance");
   e.violation_tol = positive(s, "elastic.violation_tolerance");
   e.polish = s.boolean("elastic.polish");
+  e.polish_fixed_above = non_negative(s, "elastic.polish_fixed_above");
   e.sigma = positive(s, "elastic.sigma");
   e.sigma_factor = below_one(s, "elastic.sigma_factor");
   e.sigma_min = positive(s, "elastic.sigma_min");

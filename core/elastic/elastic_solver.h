@@ -35,7 +35,8 @@
 //   3. polish (optional: elastic.polish): the branch NLP in which, for every
 //      pair, the smaller side at the elastic solution is fixed to zero, solved
 //      warm-started. Complementarity then holds exactly up to the constraint
-//      tolerance. If the branch NLP fails, the elastic answer stands.
+//      tolerance. If the branch NLP fails, the elastic answer stands. Not for a
+//      fixed objective's point that is already tight below polish_fixed_above.
 // Every answer is certified on the MPCC itself (certify()); a result is
 // kSolved only when Ipopt converged AND the certificate meets both
 // tolerances.
@@ -83,6 +84,11 @@ struct ElasticSettings {
   double complementarity_tol = 0.0;
   double violation_tol = 0.0;
   bool polish = false;
+  // > 0: a solve whose objective is fixed (ElasticRequest::objective_fixed: a fixed step or a
+  // probe) that ends solved with complementarity at most this is not polished: its elastic
+  // point is certified as it stands, and warm starts continue from that point whether it is
+  // polished or not (solve()). 0: polished as every other solve.
+  double polish_fixed_above = 0.0;
   // kRelaxed only: the relaxation homotopy.
   double sigma = 0.0;          // first relaxation
   double sigma_factor = 0.0;   // next = sigma * factor
