@@ -38,6 +38,9 @@ struct StepRequest {
   bool minimize = false;    // a minimisation (step 3): ElasticSettings::Stall applies
   double zeta = 0.0;        // > 0: ElasticRequest::zeta
   double zeta_limit = 0.0;  // > 0: ElasticRequest::zeta_limit
+  // A feasibility phase whose certified point is perturbed next (step 1b): polished as always,
+  // since the perturbation starts from it (objective_reduction.h, "Polish").
+  bool perturbed_next = false;
 };
 
 // One run of reduce_objective: its solves, its solve log and its best point. The control flow
@@ -85,6 +88,10 @@ struct Reduction {
     ElasticRequest req = request(q.iteration_limit, reserve);
     // A fixed step fixes J: no zeta raise (objective_reduction.h, "Fixed steps and zeta").
     req.objective_fixed = q.bound == Bound::kFixed;
+    // A feasibility phase of objective time: J is its fixed horizon (objective_reduction.h,
+    // "Polish").
+    req.objective_constant = q.bound == Bound::kHorizon && !q.perturbed_next &&
+                             problem.objective_kind() == ObjectiveKind::kTime;
     req.stall = q.minimize;
     req.cold_start = q.minimize && cfg.cold_minimize;  // (objective_reduction.h, "Minimisations")
     req.zeta = q.zeta;
@@ -327,7 +334,9 @@ ReductionResult reduce_objective(RobotProblem& problem, const ElasticSolver& sol
         const double T = feasibility_horizon(problem, cfg) * std::pow(2.0, s.attempt);
         problem.set_horizon_max(problem.horizon_reach(T));
         const Vector z0 = guess ? guess(T) : smoothstep_guess(problem, T);
-        const MpccResult r = run.step({Bound::kHorizon, T, 0}, z0);
+        StepRequest q{Bound::kHorizon, T, 0};
+        q.perturbed_next = o.perturb;
+        const MpccResult r = run.step(q, z0);
         // A failure says why: the outcome of the last NLP solve (invalid number: an
         // evaluation gave NaN or Inf, which the Nlp wrapper turns into a failed callback).
         out.feasibility_detail = to_string(r.status);

@@ -135,6 +135,15 @@
 //   feasibility phases keep the zeta rule: they start from a guess, where Ipopt can stop at a
 //   stationary point of eps that is not its minimum and the warm-started re-solve leaves it
 //   (tests/test_solution_file.cpp's push_box scene: 0.19, then 7e-9 after one raise).
+// Polish. A point the loop keeps only to start later solves from, at a J that polish cannot
+//   change, is not polished when its elastic solve already ends tight, complementarity at most
+//   elastic.polish_fixed_above (ElasticSettings::polish_fixed_above): fixed steps and probes
+//   (objective_fixed), and the feasibility phases of objective time (objective_constant: J is
+//   their fixed horizon; they keep the zeta rule), unless step 1b perturbs the feasible point
+//   next, which starts from the certified point itself. Later solves start from the elastic
+//   point either way (core/elastic/elastic_solver.h, solve()), so the path is the same.
+//   Minimisations are polished: polish can lower their J, and gives the reported optimum exact
+//   complementarity.
 // The control flow above is search/reduction_phases.h: named phases and one transition
 // function; reduce_objective runs each phase's solve, passing the elastic solver its limits
 // (iteration cap, the time limit's deadline) as an ElasticRequest.

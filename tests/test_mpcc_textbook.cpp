@@ -853,6 +853,42 @@ TEST_P(MpccFixedObjective, ATightFixedPointBelowTheThresholdIsNotPolished) {
   EXPECT_EQ(above.polished, polish);
 }
 
+// ElasticRequest::objective_constant (the reduction's feasibility phases): the zeta rule as
+// without it, but a point that ends tight below polish_fixed_above is not polished, as a fixed
+// step's: the same elastic solves, one polish fewer, the same elastic point bit for bit.
+TEST_P(MpccFixedObjective, AConstantObjectiveKeepsTheZetaRuleAndSkipsATightPolish) {
+  const auto [form, polish] = GetParam();
+  ElasticSettings s = settings_for(form, polish);
+  s.polish_fixed_above = 1e-8;
+  IpoptSolver ipopt(disco_yaml_ipopt_settings());
+  const ElasticSolver solver(ipopt, s);
+  ElasticRequest constant;
+  constant.objective_constant = true;
+  const PolynomialProgram tight = fixed_objective_problem(true);
+  const MpccResult as_is = solver.solve(tight, tight.initial_point(), constant);
+  const MpccResult plain = solver.solve(tight, tight.initial_point());
+  SCOPED_TRACE("constant: " + describe(as_is) + "\nplain: " + describe(plain));
+  ASSERT_EQ(as_is.status, MpccStatus::kSolved);
+  ASSERT_EQ(plain.status, MpccStatus::kSolved);
+  EXPECT_EQ(plain.polished, polish);
+  if (form == ElasticFormulation::kRelaxed) {  // its homotopy ends above the threshold
+    EXPECT_EQ(as_is.polished, polish);
+    EXPECT_EQ(as_is.nlp_solves, plain.nlp_solves);
+  } else {
+    EXPECT_FALSE(as_is.polished);
+    EXPECT_EQ(as_is.nlp_solves, plain.nlp_solves - (polish ? 1 : 0));
+    EXPECT_LE(as_is.certificate.max_complementarity, 1e-8);
+    EXPECT_EQ((as_is.elastic_point.z - plain.elastic_point.z).cwiseAbs().maxCoeff(), 0.0);
+  }
+  // Not tight at the first zeta: raised as without the flag (a fixed objective is not).
+  const PolynomialProgram loose = fixed_objective_problem(false);
+  const MpccResult raised = solver.solve(loose, loose.initial_point(), constant);
+  const MpccResult rule = solver.solve(loose, loose.initial_point());
+  EXPECT_EQ(raised.nlp_solves, rule.nlp_solves);
+  EXPECT_EQ(raised.zeta, rule.zeta);
+  EXPECT_GT(raised.zeta, s.zeta);
+}
+
 // ElasticSettings::Stagnation: a fixed step's eps that stopped falling far from tight ends the
 // solve (lumped and barrier formulations, which have an eps). On the problem above that cannot
 // be tight (eps = x y >= 1), a rule that looks from iteration 1 at windows of one iteration

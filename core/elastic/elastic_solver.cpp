@@ -362,11 +362,12 @@ MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta,
           : penalty_loop(nlp, std::move(start), zeta, request, out, record);
 
   // 3. Polish: fix the smaller side of every pair to zero and re-solve.
-  // Worth it when the elastic solve converged near complementarity, unless a fixed objective's
-  // point is already tight (ElasticSettings::polish_fixed_above): the polished point would only
-  // make complementarity exact, at the same objective, and warm starts go on from the elastic
-  // point either way.
-  const bool tight_fixed = request.objective_fixed && out.status == MpccStatus::kSolved &&
+  // Worth it when the elastic solve converged near complementarity, unless a fixed or constant
+  // objective's point is already tight (ElasticSettings::polish_fixed_above): the polished point
+  // would only make complementarity exact, at the same objective, and warm starts go on from
+  // the elastic point either way.
+  const bool tight_fixed = (request.objective_fixed || request.objective_constant) &&
+                           out.status == MpccStatus::kSolved &&
                            out.certificate.max_complementarity <= settings_.polish_fixed_above;
   const bool worth_polishing =
       converged && out.certificate.max_complementarity < 1e-2 && !tight_fixed;

@@ -36,7 +36,7 @@
 //      pair, the smaller side at the elastic solution is fixed to zero, solved
 //      warm-started. Complementarity then holds exactly up to the constraint
 //      tolerance. If the branch NLP fails, the elastic answer stands. Not for a
-//      fixed objective's point that is already tight below polish_fixed_above.
+//      fixed or constant objective's point that is already tight below polish_fixed_above.
 // Every answer is certified on the MPCC itself (certify()); a result is
 // kSolved only when Ipopt converged AND the certificate meets both
 // tolerances.
@@ -84,10 +84,11 @@ struct ElasticSettings {
   double complementarity_tol = 0.0;
   double violation_tol = 0.0;
   bool polish = false;
-  // > 0: a solve whose objective is fixed (ElasticRequest::objective_fixed: a fixed step or a
-  // probe) that ends solved with complementarity at most this is not polished: its elastic
-  // point is certified as it stands, and warm starts continue from that point whether it is
-  // polished or not (solve()). 0: polished as every other solve.
+  // > 0: a solve whose objective is fixed or constant (ElasticRequest::objective_fixed: a fixed
+  // step or a probe; ElasticRequest::objective_constant: a feasibility phase) that ends solved
+  // with complementarity at most this is not polished: its elastic point is certified as it
+  // stands, and warm starts continue from that point whether it is polished or not (solve()).
+  // 0: polished as every other solve.
   double polish_fixed_above = 0.0;
   // kRelaxed only: the relaxation homotopy.
   double sigma = 0.0;          // first relaxation
@@ -148,6 +149,12 @@ struct ElasticRequest {
   // with complementarity not tight is final: no zeta raise (kElasticNotTight at once; polish
   // is still tried). Without it, the zeta rule of step 2.
   bool objective_fixed = false;
+  // The MPCC's objective is constant on its feasible set, but zeta's rule applies (the
+  // reduction's feasibility phases: objective time at a fixed horizon, started from a guess),
+  // and the caller has no use for a polished point: a solve that ends solved with
+  // complementarity at most ElasticSettings::polish_fixed_above is certified as it stands, not
+  // polished, as with objective_fixed. Polish could not change its objective either.
+  bool objective_constant = false;
   // A minimisation: ElasticSettings::Stall ends a solve that creeps at the corner.
   bool stall = false;
   // From a warm result (solve(mpcc, warm, ...)): start from its primal point only, with
