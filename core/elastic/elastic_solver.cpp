@@ -366,11 +366,11 @@ MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta,
   // objective's point is already tight (ElasticSettings::polish_fixed_above): the polished point
   // would only make complementarity exact, at the same objective, and warm starts go on from
   // the elastic point either way.
-  const bool tight_fixed = (request.objective_fixed || request.objective_constant) &&
+  const bool certified_as_is = (request.objective_fixed || request.objective_constant) &&
                            out.status == MpccStatus::kSolved &&
                            out.certificate.max_complementarity <= settings_.polish_fixed_above;
   const bool worth_polishing =
-      converged && out.certificate.max_complementarity < 1e-2 && !tight_fixed;
+      converged && out.certificate.max_complementarity < 1e-2 && !certified_as_is;
   if (settings_.polish && worth_polishing && !past(request)) {
     const MpccResult before = out;
     const Vector& x = out.elastic_point.z;
