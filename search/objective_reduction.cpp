@@ -92,6 +92,9 @@ struct Reduction {
     // "Polish").
     req.objective_constant = q.bound == Bound::kHorizon && !q.perturbed_next &&
                              problem.objective_kind() == ObjectiveKind::kTime;
+    // Any feasibility phase of objective time: eps alone is minimised, from a guess.
+    req.feasibility =
+        q.bound == Bound::kHorizon && problem.objective_kind() == ObjectiveKind::kTime;
     req.stall = q.minimize;
     req.cold_start = q.minimize && cfg.cold_minimize;  // (objective_reduction.h, "Minimisations")
     req.zeta = q.zeta;

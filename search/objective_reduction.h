@@ -5,7 +5,9 @@
 //      time: the slowest robot's straight move alone), or the start's own horizon
 //      (ReductionSettings::horizon, a start from a trajectory), and solve
 //      the elastic MPCC from the guess (the objective is then constant). If it
-//      is not solved, double T_f and try again (three times at most). This
+//      is not solved, double T_f and try again (three times at most). An attempt whose eps
+//      stagnates far from tight ends there, not tight (ElasticRequest::feasibility,
+//      elastic.stagnation.feasibility_after; core/elastic/elastic_solver.h). This
 //      horizon is the largest any later step asks for, so each attempt first
 //      sets the model's T_max to it (RobotProblem::set_horizon_max: the
 //      adaptive model builds what the scene needs up to that horizon).

@@ -889,6 +889,23 @@ TEST_P(MpccFixedObjective, AConstantObjectiveKeepsTheZetaRuleAndSkipsATightPolis
   EXPECT_GT(raised.zeta, s.zeta);
 }
 
+// Per pair (no eps) and relaxed (its own homotopy): the stagnation rule changes nothing.
+void expect_same_run(const MpccResult& a, const MpccResult& b) {
+  EXPECT_EQ(a.outcome, b.outcome);
+  EXPECT_EQ(a.iterations, b.iterations);
+  EXPECT_EQ((a.z - b.z).cwiseAbs().maxCoeff(), 0.0);
+}
+
+// A request without objective_fixed or feasibility (the zeta rule) is not watched: the same
+// solve with the rule's settings `s` as with `never`.
+void expect_unwatched_without_flag(IpoptSolver& ipopt, const PolynomialProgram& p,
+                                   const ElasticSettings& s, const ElasticSettings& never) {
+  const MpccResult rule = ElasticSolver(ipopt, s).solve(p, p.initial_point());
+  const MpccResult rule_off = ElasticSolver(ipopt, never).solve(p, p.initial_point());
+  EXPECT_EQ(rule.iterations, rule_off.iterations);
+  EXPECT_EQ(rule.nlp_solves, rule_off.nlp_solves);
+}
+
 // ElasticSettings::Stagnation: a fixed step's eps that stopped falling far from tight ends the
 // solve (lumped and barrier formulations, which have an eps). On the problem above that cannot
 // be tight (eps = x y >= 1), a rule that looks from iteration 1 at windows of one iteration
@@ -918,15 +935,47 @@ TEST_P(MpccFixedObjective, AStagnantEpsEndsANotTightSolveEarly) {
     EXPECT_EQ(cut.outcome, NlpOutcome::kStagnated);
     EXPECT_LT(cut.iterations, full.iterations);
   } else {
-    EXPECT_EQ(cut.outcome, full.outcome);
-    EXPECT_EQ(cut.iterations, full.iterations);
-    EXPECT_EQ((cut.z - full.z).cwiseAbs().maxCoeff(), 0.0);
+    expect_same_run(cut, full);
   }
   // Without objective_fixed (the zeta rule, which raises zeta) the rule never applies.
-  const MpccResult rule = ElasticSolver(ipopt, s).solve(p, p.initial_point());
-  const MpccResult rule_off = ElasticSolver(ipopt, never).solve(p, p.initial_point());
-  EXPECT_EQ(rule.iterations, rule_off.iterations);
-  EXPECT_EQ(rule.nlp_solves, rule_off.nlp_solves);
+  expect_unwatched_without_flag(ipopt, p, s, never);
+}
+
+// ElasticRequest::feasibility: a feasibility phase's eps is watched from feasibility_after on,
+// and a stagnant eps ends the call as a fixed step's does: not tight, one NLP solve, no zeta
+// raise. On the problem above (never tight) the lumped solve ends not tight, as without the
+// watch (where the zeta rule raises), in fewer iterations; `after` (the fixed steps' rule)
+// plays no part, nor does the watch without the flag. Per pair (no eps) and relaxed (its own
+// homotopy) solve as without it.
+TEST_P(MpccFixedObjective, AFeasibilityPhasesStagnantEpsEndsItNotTight) {
+  const auto [form, polish] = GetParam();
+  ElasticSettings s = settings_for(form, polish);
+  s.stagnation = {
+      .after = 0, .window = 1, .level = 0.5, .decrease = 0.2, .feasibility_after = 1};
+  ElasticSettings never = s;
+  never.stagnation.feasibility_after = 0;
+  const PolynomialProgram p = fixed_objective_problem(false);
+  IpoptSolver ipopt(disco_yaml_ipopt_settings());
+  ElasticRequest feasibility;
+  feasibility.feasibility = true;
+  const MpccResult cut = ElasticSolver(ipopt, s).solve(p, p.initial_point(), feasibility);
+  const MpccResult full = ElasticSolver(ipopt, never).solve(p, p.initial_point(), feasibility);
+  SCOPED_TRACE("watched: " + describe(cut) + "\nwithout: " + describe(full));
+  EXPECT_EQ(cut.status, MpccStatus::kElasticNotTight);
+  EXPECT_EQ(full.status, MpccStatus::kElasticNotTight);
+  EXPECT_GE(cut.certificate.max_complementarity, 1.0 - 1e-9);
+  if (form == ElasticFormulation::kLumped) {
+    EXPECT_EQ(cut.outcome, NlpOutcome::kStagnated);
+    EXPECT_EQ(cut.nlp_solves, 1);  // no zeta raise after a stagnant solve
+    EXPECT_DOUBLE_EQ(cut.zeta, s.zeta);
+    EXPECT_GE(full.nlp_solves, 2);  // unwatched, the zeta rule raises
+    EXPECT_LT(cut.iterations, full.iterations);
+    EXPECT_FALSE(cut.stalled);  // not a minimisation's stall
+  } else {
+    expect_same_run(cut, full);
+  }
+  // The same settings without the flag: not watched.
+  expect_unwatched_without_flag(ipopt, p, s, never);
 }
 
 INSTANTIATE_TEST_SUITE_P(Textbook, MpccFixedObjective, all_form_polish(), form_polish_name);

@@ -246,6 +246,51 @@ TEST(ObjectiveReduction, ATightFeasiblePointIsPolishedOnlyForAPerturbation) {
   EXPECT_EQ(e.solves[0].nlp_solves, 2);
 }
 
+// ElasticRequest::feasibility: the feasibility phases of objective time are watched by the
+// stagnation rule from elastic.stagnation.feasibility_after on; objective energy's (which
+// minimise J, not eps alone) are not. A rule that fires as soon as it may (from iteration 1,
+// windows of one iteration, any eps above 1e-12 that did not fall to nothing) cuts the elastic
+// solve of every feasibility attempt at once, not tight and without zeta raises: each attempt
+// ends in one or two iterations, and the first in far fewer than without the watch. Objective
+// energy runs bit for bit as without it.
+TEST(ObjectiveReduction, TheFeasibilityPhaseOfObjectiveTimeIsWatchedForAStagnantEps) {
+  const std::vector<std::string> eager{
+      "elastic.stagnation.feasibility_after=1", "elastic.stagnation.window=1",
+      "elastic.stagnation.level=1e-12", "elastic.stagnation.decrease=0.999999"};
+  std::vector<std::string> unwatched = eager;
+  unwatched[0] = "elastic.stagnation.feasibility_after=0";
+  auto run = [](const Scene& scene, const std::vector<std::string>& overrides) {
+    RobotProblem problem(scene);
+    DefaultSolvers d(overrides);
+    return reduce_objective(problem, d.solver, d.schedule);
+  };
+  const Scene time = scenario("two_robots_swap_avoid", {"steps=20"});
+  const ReductionResult cut = run(time, eager), full = run(time, unwatched);
+  ASSERT_FALSE(cut.solves.empty());
+  ASSERT_TRUE(full.found);
+  const SolveRecord &a = cut.solves[0], &b = full.solves[0];
+  std::printf("  watched: %d NLP solves, %d iterations, %s; without: %d, %d, %s\n",
+              a.nlp_solves, a.iterations, to_string(a.status).c_str(), b.nlp_solves,
+              b.iterations, to_string(b.status).c_str());
+  EXPECT_EQ(a.kind, SolveKind::kFeasibility);
+  EXPECT_NE(a.status, MpccStatus::kSolved);
+  EXPECT_LT(a.iterations, b.iterations);
+  for (const SolveRecord& r : cut.solves)
+    if (r.kind == SolveKind::kFeasibility) {
+      EXPECT_EQ(r.status, MpccStatus::kElasticNotTight);
+      EXPECT_EQ(r.nlp_solves, 1);  // cut, no zeta raise (no polish: far from tight)
+      EXPECT_LE(r.iterations, 2);
+    }
+  // Objective energy: not watched.
+  const Scene energy = scenario("one_robot_axis_energy", {"steps=20"});
+  const ReductionResult e_cut = run(energy, eager), e_full = run(energy, unwatched);
+  ASSERT_TRUE(e_full.found);
+  ASSERT_EQ(e_cut.solves.size(), e_full.solves.size());
+  for (size_t k = 0; k < e_cut.solves.size(); ++k)
+    EXPECT_EQ(e_cut.solves[k].iterations, e_full.solves[k].iterations) << k;
+  EXPECT_TRUE(e_cut.best.z == e_full.best.z);
+}
+
 TEST(ObjectiveReduction, NoStepIsAskedBelowTheLowerBound) {
   // Alone, the diagonal robot cannot beat its closed-form time: every step
   // below it would be a wasted solve. A first rate of 0.45 would ask for

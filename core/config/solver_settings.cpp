@@ -162,6 +162,7 @@ ElasticSettings elastic_settings(const Settings& s) {
   e.stagnation.window = integer_at_least(s, "elastic.stagnation.window", 1);
   e.stagnation.level = positive(s, "elastic.stagnation.level");
   e.stagnation.decrease = below_one(s, "elastic.stagnation.decrease");
+  e.stagnation.feasibility_after = integer_at_least(s, "elastic.stagnation.feasibility_after", 0);
   e.stall.after = integer_at_least(s, "elastic.stall.after", 0);
   e.stall.window = integer_at_least(s, "elastic.stall.window", 1);
   e.stall.decrease = below_one(s, "elastic.stall.decrease");

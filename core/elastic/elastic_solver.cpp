@@ -216,13 +216,19 @@ bool ElasticSolver::penalty_loop(ElasticNlp& nlp, NlpPoint start, double zeta,
   double previous_residual = -1.0;
   NlpLimits solve_limits = limits(request);
   const bool follow = nlp.formulation() == ElasticFormulation::kBarrier;
-  if (request.objective_fixed && settings_.stagnation.after > 0 && nlp.eps_index() >= 0) {
-    // eps of each regular Ipopt iteration of the current solve (ElasticSettings::Stagnation).
+  // The stagnation rule of this request: a fixed step's, or a feasibility phase's, which
+  // watches from feasibility_after on (ElasticSettings::Stagnation; after 0: not watched).
+  ElasticSettings::Stagnation stagnation = settings_.stagnation;
+  if (!request.objective_fixed)
+    stagnation.after = request.feasibility ? stagnation.feasibility_after : 0;
+  if (stagnation.after > 0 && nlp.eps_index() >= 0) {
+    // eps of each regular Ipopt iteration of the current solve.
     solve_limits.watch = NlpLimits::Watch{
-        nlp.eps_index(), [this, eps = std::vector<double>()](const NlpLimits::Iterate& it) mutable {
+        nlp.eps_index(), [stagnation, eps = std::vector<double>()](
+                             const NlpLimits::Iterate& it) mutable {
           if (it.iteration == 0) eps.clear();
           eps.push_back(it.value);
-          return settings_.stagnation.stagnated(it.iteration, eps);
+          return stagnation.stagnated(it.iteration, eps);
         }};
   } else if (request.stall && settings_.stall.after > 0) {
     // The objective at each settled iterate of the current solve (ElasticSettings::Stall).
@@ -249,7 +255,7 @@ bool ElasticSolver::penalty_loop(ElasticNlp& nlp, NlpPoint start, double zeta,
     const NlpResult r = ipopt_.solve(nlp, start, solve_limits);
     if (follow) nlp.set_live_relaxation(0.0);  // polish and the certificate see the MPCC
     record(r, follow ? "barrier" : "elastic", zeta);
-    if (r.outcome == NlpOutcome::kStagnated && request.objective_fixed) {
+    if (r.outcome == NlpOutcome::kStagnated && (request.objective_fixed || request.feasibility)) {
       out.status = MpccStatus::kElasticNotTight;  // not tight, as it would have converged
       return true;
     }

@@ -105,13 +105,19 @@ struct ElasticSettings {
   // least eps of the last `window` iterations is above `level` and less than the fraction
   // `decrease` below the least eps of the `window` iterations before those. Lumped and
   // barrier formulations (penalty loop); eps in the model's scaled units.
+  // A feasibility phase (ElasticRequest::feasibility) minimises eps alone too, from a guess:
+  // the same rule watches it from Ipopt iteration `feasibility_after` on (0: never), and a
+  // stagnant eps ends it the same way, not tight, without the zeta rule's raises (from a
+  // stagnant, unconverged point they stagnate again). Later than `after`: from a guess eps can
+  // sit on a plateau above `level` for a while and then fall to 0.
   struct Stagnation {
     int after = 0;
     int window = 0;
     double level = 0.0;
     double decrease = 0.0;
+    int feasibility_after = 0;
     // Whether eps, given the values of consecutive Ipopt iterations (the last at `iteration`),
-    // has stagnated.
+    // has stagnated (from iteration `after` on).
     bool stagnated(int iteration, const std::vector<double>& eps) const;
   };
   Stagnation stagnation;
@@ -155,6 +161,11 @@ struct ElasticRequest {
   // complementarity at most ElasticSettings::polish_fixed_above is certified as it stands, not
   // polished, as with objective_fixed. Polish could not change its objective either.
   bool objective_constant = false;
+  // A feasibility phase of objective time (the reduction's steps 1 and 1b, whether or not a
+  // perturbation follows): the objective is constant on the feasible set (the fixed horizon),
+  // the solve starts from a guess and the zeta rule applies; ElasticSettings::Stagnation
+  // watches eps from `feasibility_after` on, and a stagnant eps ends the call, not tight.
+  bool feasibility = false;
   // A minimisation: ElasticSettings::Stall ends a solve that creeps at the corner.
   bool stall = false;
   // From a warm result (solve(mpcc, warm, ...)): start from its primal point only, with
