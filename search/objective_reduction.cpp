@@ -88,13 +88,12 @@ struct Reduction {
     ElasticRequest req = request(q.iteration_limit, reserve);
     // A fixed step fixes J: no zeta raise (objective_reduction.h, "Fixed steps and zeta").
     req.objective_fixed = q.bound == Bound::kFixed;
-    // A feasibility phase of objective time: J is its fixed horizon (objective_reduction.h,
-    // "Polish").
-    req.objective_constant = q.bound == Bound::kHorizon && !q.perturbed_next &&
-                             problem.objective_kind() == ObjectiveKind::kTime;
-    // Any feasibility phase of objective time: eps alone is minimised, from a guess.
+    // A feasibility phase of objective time: J is its fixed horizon, eps alone is minimised,
+    // from a guess; its tight point is certified as it stands unless a perturbation of it
+    // follows (objective_reduction.h, "Polish").
     req.feasibility =
         q.bound == Bound::kHorizon && problem.objective_kind() == ObjectiveKind::kTime;
+    req.objective_constant = req.feasibility && !q.perturbed_next;
     req.stall = q.minimize;
     req.cold_start = q.minimize && cfg.cold_minimize;  // (objective_reduction.h, "Minimisations")
     req.zeta = q.zeta;
