@@ -98,6 +98,20 @@ TEST(IpoptSolverOptions, ValidListIsAccepted) {
   EXPECT_NO_THROW(IpoptSolver solver(std::vector<IpoptOption>{}));
 }
 
+// The objective scaling limit ElasticSolver's polish reads: Ipopt's nlp_scaling_max_gradient
+// (default 100) with gradient-based scaling, none without scaling.
+TEST(IpoptSolverOptions, TheScalingLimitIsIpoptsMaxGradientOrNoneWithoutScaling) {
+  auto with = [](std::vector<IpoptOption> extra) {
+    std::vector<IpoptOption> options = disco_yaml_ipopt_options();
+    options.insert(options.end(), extra.begin(), extra.end());
+    return IpoptSolver(options).scaling_max_gradient();
+  };
+  EXPECT_EQ(with({}), 100.0);
+  EXPECT_EQ(with({{"nlp_scaling_max_gradient", "250", "w"}}), 250.0);
+  EXPECT_EQ(with({{"nlp_scaling_method", "none", "w"}}),
+            std::numeric_limits<double>::infinity());
+}
+
 // Finding (see the report): "nan" parses as a number and passes Ipopt's range
 // check (every comparison with NaN is false), so tol = nan is accepted.
 TEST(IpoptSolverOptions, NanIsNotANumericValue) {

@@ -434,6 +434,7 @@ ElasticSettings settings_for(ElasticFormulation form, bool polish) {
 std::string mode_name(ElasticFormulation form, bool polish) {
   const char* name = form == ElasticFormulation::kLumped    ? "Lumped"
                      : form == ElasticFormulation::kPerPair ? "PerPair"
+                     : form == ElasticFormulation::kBarrier ? "Barrier"
                                                             : "Relaxed";
   return std::string(name) + (polish ? "Polish" : "NoPolish");
 }
@@ -489,9 +490,14 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::ValuesIn([] {
       std::vector<Mode> modes;
       for (auto id : {ProblemId::kScheelScholtes, ProblemId::kRalph, ProblemId::kBard1,
-                      ProblemId::kDeSilva, ProblemId::kGauvin, ProblemId::kExpSqrt})
+                      ProblemId::kDeSilva, ProblemId::kGauvin, ProblemId::kExpSqrt}) {
         for (const auto& [form, polish] : form_polish_list(true))
           modes.emplace_back(id, form, polish);
+        // The relaxation moved with Ipopt's barrier parameter (issue 34; its own tests in
+        // tests/test_barrier_relaxation.cpp): with polish, which it needs, as relaxed does, and
+        // disco.yaml's elastic.barrier_mu (monotone; adaptive ends ExpSqrt at f = 2).
+        modes.emplace_back(id, ElasticFormulation::kBarrier, true);
+      }
       return modes;
     }()),
     [](const ::testing::TestParamInfo<Mode>& info) {
@@ -1127,6 +1133,40 @@ TEST(MpccColdStart, FromAResultUsesItsPrimalPointOnly) {
   EXPECT_EQ((a.z - b.z).cwiseAbs().maxCoeff(), 0.0) << "the multipliers were read";
   EXPECT_NE(warm.iterations, warm_scaled.iterations) << "a warm start reads them";
   EXPECT_NE(a.iterations, warm.iterations) << "started as the warm start";
+}
+
+// elastic.barrier_mu reaches Ipopt: with adaptive mu the barrier form's mu falls from 1 to
+// 4e-6 at ExpSqrt's second iteration, sigma with it, and the solve settles on the branch x = 0
+// (f = 2 at (0, 2), a local optimum); monotone mu (the suite above) reaches f* = 1.43337.
+TEST(MpccBarrier, AdaptiveMuEndsExpSqrtOnItsOtherBranch) {
+  const Problem pb = make_problem(ProblemId::kExpSqrt);
+  IpoptSolver ipopt(disco_yaml_ipopt_settings());
+  ElasticSettings s = settings_for(ElasticFormulation::kBarrier, true);
+  ASSERT_TRUE(s.barrier_monotone_mu) << "configs/disco.yaml's elastic.barrier_mu";
+  s.barrier_monotone_mu = false;
+  const MpccResult r = solve_fresh(*pb.mpcc, pb.start, s);
+  ASSERT_EQ(r.status, MpccStatus::kSolved) << describe(r);
+  EXPECT_NEAR(r.objective, 2.0, 1e-6) << describe(r);
+  EXPECT_NEAR(r.z[0], 0.0, 1e-6);
+  EXPECT_NEAR(r.z[1], 2.0, 1e-4);
+}
+
+// Polish fixes the smaller side of every pair, so every product is zero and the elastic
+// variable's optimum is 0 whatever its weight; polish weighs it with at most Ipopt's
+// nlp_scaling_max_gradient (100). Weighed with a raised zeta (1e6 here), the penalty's
+// gradient made Ipopt scale the objective by 100 / zeta, which loosened the polished point's
+// optimality as much: Ralph's polish ended at x = 0.002 (f = 4e-6).
+TEST(MpccPolish, AtARaisedZetaItStillReachesTheOptimum) {
+  const Problem pb = make_problem(ProblemId::kRalph);
+  IpoptSolver ipopt(disco_yaml_ipopt_settings());
+  ASSERT_EQ(ipopt.scaling_max_gradient(), 100.0) << "Ipopt's default";
+  ElasticSolver solver(ipopt, settings_for(ElasticFormulation::kLumped, true));
+  ElasticRequest raised;
+  raised.zeta = 1e6;
+  const MpccResult r = solver.solve(*pb.mpcc, pb.start, raised);
+  EXPECT_TRUE(r.polished) << describe(r);
+  EXPECT_EQ(r.zeta, 1e6) << "the elastic solve's zeta, reported as before";
+  expect_solved_to_reference(pb, r);
 }
 
 }  // namespace

@@ -749,7 +749,8 @@ TEST(ObjectiveReduction, TheRelaxedFormulationReachesTheOneRobotOptimum) {
 }
 
 // Each relaxed solve ends where the relaxation stops holding and polish fixes the branch:
-// without polish it would not end certified, so the settings refuse it, naming the key.
+// without polish it would not end certified, so the settings refuse it, naming the key; so
+// does a barrier solve at a corner where both sides vanish (Ralph's).
 TEST(ObjectiveReduction, RelaxedWithoutPolishIsAnErrorNamingTheKey) {
   // The message elastic_settings gives for these overrides ("" if none).
   auto error_for = [](std::initializer_list<const char*> overrides) -> std::string {
@@ -765,6 +766,10 @@ TEST(ObjectiveReduction, RelaxedWithoutPolishIsAnErrorNamingTheKey) {
   const std::string polish = error_for({"elastic.formulation=relaxed", "elastic.polish=false"});
   EXPECT_NE(polish.find("key 'elastic.polish'"), std::string::npos) << polish;
   EXPECT_NE(polish.find("relaxed needs polish"), std::string::npos) << polish;
+  const std::string barrier = error_for({"elastic.formulation=barrier", "elastic.polish=false"});
+  EXPECT_NE(barrier.find("key 'elastic.polish'"), std::string::npos) << barrier;
+  EXPECT_NE(barrier.find("barrier needs polish"), std::string::npos) << barrier;
+  EXPECT_EQ(error_for({"elastic.formulation=barrier"}), "");
   const std::string factor = error_for({"elastic.formulation=relaxed", "elastic.sigma_factor=1.5"});
   EXPECT_NE(factor.find("key 'elastic.sigma_factor'"), std::string::npos) << factor;
   EXPECT_NE(factor.find("must be below 1"), std::string::npos) << factor;

@@ -251,6 +251,7 @@ TEST(Settings, TheSectionReadersRefuseValuesOutOfRange) {
       {"elastic.formulation=tight", "elastic.formulation", "must be 'lumped', 'per_pair', 'relaxed' or 'barrier', got 'tight'", false},
       {"elastic.barrier_sigma_factor=0", "elastic.barrier_sigma_factor", "must be positive", false},
       {"elastic.barrier_sigma_exponent=-1", "elastic.barrier_sigma_exponent", "must be positive", false},
+      {"elastic.barrier_mu=fast", "elastic.barrier_mu", "must be 'monotone' or 'adaptive', got 'fast'", false},
       {"elastic.polish_fixed_above=-1e-8", "elastic.polish_fixed_above", "must be >= 0", false},
       {"feasibility.horizon_min=0", "feasibility.horizon_min", "must be positive", true},
       {"reduction.rate=1", "reduction.rate", "must be below 1", true},

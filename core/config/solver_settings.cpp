@@ -158,6 +158,8 @@ ElasticSettings elastic_settings(const Settings& s) {
   e.barrier_ratio = positive(s, "elastic.barrier_ratio");
   e.barrier_sigma_factor = positive(s, "elastic.barrier_sigma_factor");
   e.barrier_sigma_exponent = positive(s, "elastic.barrier_sigma_exponent");
+  e.barrier_monotone_mu =
+      choice<bool>(s, "elastic.barrier_mu", {{"monotone", true}, {"adaptive", false}});
   e.stagnation.after = integer_at_least(s, "elastic.stagnation.after", 0);
   e.stagnation.window = integer_at_least(s, "elastic.stagnation.window", 1);
   e.stagnation.level = positive(s, "elastic.stagnation.level");
@@ -172,6 +174,10 @@ ElasticSettings elastic_settings(const Settings& s) {
     refuse(s, "elastic.polish",
            "formulation relaxed needs polish: its homotopy ends where the relaxation stops "
            "holding, and polish fixes the branch");
+  if (e.formulation == ElasticFormulation::kBarrier && !e.polish)
+    refuse(s, "elastic.polish",
+           "formulation barrier needs polish: at a corner where both sides of a pair vanish "
+           "its relaxation leaves both near sqrt(sigma), and polish fixes the branch");
   return e;
 }
 

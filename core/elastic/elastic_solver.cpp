@@ -242,6 +242,8 @@ bool ElasticSolver::penalty_loop(ElasticNlp& nlp, NlpPoint start, double zeta,
         }};
   }
   if (follow) {
+    // elastic.barrier_mu monotone: sigma follows a Fiacco-McCormick mu (header).
+    if (settings_.barrier_monotone_mu) solve_limits.barrier = BarrierStage{};
     solve_limits.follow_barrier = [&nlp, this](double mu) {
       const double sigma =
           settings_.barrier_sigma_factor * std::pow(mu, settings_.barrier_sigma_exponent);
@@ -388,6 +390,10 @@ MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta,
     for (int k = 0; k < nlp.num_variables(); ++k)  // start inside the new bounds
       polish_start.z[k] = std::clamp(polish_start.z[k], nlp.variable_lower()[k],
                                      nlp.variable_upper()[k]);
+    // Every product is now zero: eps's optimum is 0 whatever its weight, and a zeta above
+    // Ipopt's scaling limit would only scale the objective down and loosen the polish's
+    // optimality (header).
+    nlp.set_zeta(std::min(out.zeta, ipopt_.scaling_max_gradient()));
     const NlpResult r = ipopt_.solve(nlp, polish_start, limits(request));
     record(r, "polish", out.zeta);
     if (r.converged() &&

@@ -30,13 +30,24 @@
 //   steps 1-2 with the relaxation inside each Ipopt run (after Raghunathan & Biegler's IPOPT-C and Leyffer, Lopez-Calva &
 //   Nocedal, where the relaxation moves with the barrier parameter): at every iteration
 //   sigma = barrier_sigma_factor * mu^barrier_sigma_exponent, with mu Ipopt's own
-//   (NlpLimits::follow_barrier; Ipopt then evaluates the current iterate again). One Ipopt
-//   run goes from a relaxed problem with an interior to the MPCC's corner, as mu goes to 0.
+//   (NlpLimits::follow_barrier; Ipopt then evaluates the current iterate again). With
+//   elastic.barrier_mu monotone mu falls monotonically (Fiacco-McCormick, a BarrierStage from
+//   the configured mu_init), as in those papers: Ipopt's adaptive mu may drop by orders of
+//   magnitude in one iteration, and sigma with it, which fixes a branch before the iterate
+//   has chosen one (ExpSqrt in tests/test_mpcc_textbook.cpp). One Ipopt run goes from a relaxed
+//   problem with an interior to the MPCC's corner, as mu goes to 0. Polish is required (as
+//   for kRelaxed): at a corner where both sides vanish the relaxation leaves both near
+//   sqrt(sigma).
 //   3. polish (optional: elastic.polish): the branch NLP in which, for every
 //      pair, the smaller side at the elastic solution is fixed to zero, solved
 //      warm-started. Complementarity then holds exactly up to the constraint
 //      tolerance. If the branch NLP fails, the elastic answer stands. Not for a
 //      fixed or constant objective's point that is already tight below polish_fixed_above.
+//      With a side of every pair fixed every product is zero, so eps's optimum is 0 whatever
+//      its weight: polish weighs it with min(zeta, IpoptSolver::scaling_max_gradient()), since
+//      a zeta above that would only make Ipopt scale the objective down (gradient-based
+//      scaling at the start, by nlp_scaling_max_gradient / zeta) and loosen the polished
+//      point's optimality as much.
 // Every answer is certified on the MPCC itself (certify()); a result is
 // kSolved only when Ipopt converged AND the certificate meets both
 // tolerances.
@@ -98,6 +109,9 @@ struct ElasticSettings {
   // kBarrier only: sigma = factor * mu^exponent at every Ipopt iteration.
   double barrier_sigma_factor = 0.0;
   double barrier_sigma_exponent = 0.0;
+  // kBarrier only: Ipopt's mu falls monotonically in its solves (true) or as configured
+  // (ipopt.mu_strategy; false).
+  bool barrier_monotone_mu = false;
   // A solve with the objective fixed (ElasticRequest::objective_fixed) minimises eps alone;
   // one whose eps has stopped falling far from tight would end not tight, and only after
   // many more iterations. It ends there (NlpOutcome::kStagnated, kElasticNotTight as at

@@ -376,6 +376,10 @@ IpoptSolver::IpoptSolver(const std::vector<IpoptOption>& options)
   list->GetNumericValue("mu_init", mu_init_, "");
   list->GetNumericValue("mu_target", mu_target_, "");
   list->GetNumericValue("tol", tol_, "");
+  std::string scaling;
+  list->GetStringValue("nlp_scaling_method", scaling, "");
+  if (scaling == "gradient-based")
+    list->GetNumericValue("nlp_scaling_max_gradient", scaling_max_gradient_, "");
   for (int k = 0; k < kPushes; ++k) {
     list->GetNumericValue(kColdPushes[k], cold_push_[k], "");
     list->GetNumericValue(std::string("warm_start_") + kColdPushes[k], warm_push_[k], "");

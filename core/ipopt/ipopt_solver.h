@@ -14,8 +14,9 @@
 // thread of a process at a time.
 #pragma once
 
-#include <memory>
 #include <functional>
+#include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -209,6 +210,11 @@ class IpoptSolver {
   // "yes" (configs/disco.yaml; "no": every solve starts its duals cold).
   NlpResult solve(const Nlp& nlp, const NlpPoint& start, const NlpLimits& limits = {});
 
+  // The largest gradient entry at a solve's start that Ipopt leaves unscaled (its
+  // nlp_scaling_max_gradient with gradient-based scaling; infinity with none): a larger one
+  // scales the objective down by this over it, and Ipopt's tolerances with it.
+  double scaling_max_gradient() const { return scaling_max_gradient_; }
+
  private:
   struct Application;  // holds Ipopt's reference-counted application
   std::unique_ptr<Application> app_;
@@ -224,6 +230,7 @@ class IpoptSolver {
   // The configured barrier options, restored after a solve with a BarrierStage.
   std::string mu_strategy_;
   double mu_init_ = 0.0, mu_target_ = 0.0, tol_ = 0.0;
+  double scaling_max_gradient_ = std::numeric_limits<double>::infinity();
   // Ipopt's cold-start pushes (bound_push, bound_frac, slack_bound_push, slack_bound_frac) and
   // their warm-start counterparts, as configured (NlpLimits::push_as_warm).
   static constexpr int kPushes = 4;
