@@ -214,6 +214,7 @@ void PermutedSymmetric::assign(int n, int nnz, const int* rows, const int* cols,
   ax_.assign(ai_.size(), 0.0);
   s_.assign(n, 1.0);
   row_norm_.assign(n, 0.0);
+  row_max_.assign(n, 0.0);
   rhs_.assign(n, 0.0);
   x_.assign(n, 0.0);
   r_.assign(n, 0.0);
@@ -222,22 +223,36 @@ void PermutedSymmetric::assign(int n, int nnz, const int* rows, const int* cols,
   empty_rows_ = 0;
 }
 
+PermutedSymmetric::Loaded PermutedSymmetric::load_scaled(const double* values, int sweeps) {
+  const Loaded loaded = load(values);
+  if (loaded == Loaded::kDone) scale(sweeps);
+  return loaded;
+}
+
 PermutedSymmetric::Loaded PermutedSymmetric::load(const double* values) {
   std::fill(ax_.begin(), ax_.end(), 0.0);
   const int nnz = static_cast<int>(slot_.size());
   for (int t = 0; t < nnz; ++t) ax_[slot_[t]] += values[t];
   std::fill(row_norm_.begin(), row_norm_.end(), 0.0);
   for (int k = 0; k < n_; ++k) {
-    // Row k's sum over column k in a register (column k holds rows <= k: no earlier column
-    // reached row_norm_[k]); the other rows' sums in the same order as entry by entry.
-    double column = 0.0;
+    // Row k's sum and maximum over column k in registers (column k holds rows <= k: no earlier
+    // column reached row k); the other rows' sums in the same order as entry by entry. A
+    // maximum is exact in any order, so row_max_ needs no clearing: row k's is stored at
+    // column k, before any later column reads it (as in scale).
+    double column = 0.0, column_max = 0.0;
     for (int p = ap_[k]; p < ap_[k + 1]; ++p) {
       const double a = std::abs(ax_[p]);
       if (!std::isfinite(a)) return Loaded::kNotFinite;
-      if (ai_[p] != k) row_norm_[ai_[p]] += a;
+      const int i = ai_[p];
+      if (i != k) {
+        row_norm_[i] += a;
+        row_max_[i] = std::max(row_max_[i], a);
+      }
       column += a;
+      column_max = std::max(column_max, a);
     }
     row_norm_[k] = column;
+    row_max_[k] = column_max;
   }
   norm_ = n_ > 0 ? *std::max_element(row_norm_.begin(), row_norm_.end()) : 0.0;
   empty_rows_ = static_cast<int>(std::count(row_norm_.begin(), row_norm_.end(), 0.0));
@@ -246,21 +261,25 @@ PermutedSymmetric::Loaded PermutedSymmetric::load(const double* values) {
 
 void PermutedSymmetric::scale(int sweeps) {
   std::fill(s_.begin(), s_.end(), 1.0);
-  std::vector<double>& largest = y_;
+  std::vector<double>& largest = row_max_;
   for (int sweep = 0; sweep < sweeps; ++sweep) {
-    for (int k = 0; k < n_; ++k) {
-      // Column k holds rows i <= k, so no earlier column reached largest[k]: its own maximum is
-      // kept in a register and stored once, before any later column reads it (a max is exact:
-      // the same bits as updating largest[k] entry by entry; no clearing between sweeps).
-      const double sk = s_[k];
-      double column = 0.0;
-      for (int p = ap_[k]; p < ap_[k + 1]; ++p) {
-        const int i = ai_[p];
-        const double v = std::abs(ax_[p]) * s_[i] * sk;
-        if (i != k) largest[i] = std::max(largest[i], v);
-        column = std::max(column, v);
+    // Every row's largest |s_i a_ij s_j|. The first sweep's (s = 1) are load's.
+    if (sweep > 0) {
+      for (int k = 0; k < n_; ++k) {
+        // Column k holds rows i <= k, so no earlier column reached largest[k]: its own maximum
+        // is kept in a register and stored once, before any later column reads it (a max is
+        // exact: the same bits as updating largest[k] entry by entry; no clearing between
+        // sweeps).
+        const double sk = s_[k];
+        double column = 0.0;
+        for (int p = ap_[k]; p < ap_[k + 1]; ++p) {
+          const int i = ai_[p];
+          const double v = std::abs(ax_[p]) * s_[i] * sk;
+          if (i != k) largest[i] = std::max(largest[i], v);
+          column = std::max(column, v);
+        }
+        largest[k] = column;
       }
-      largest[k] = column;
     }
     // s_k ← s_k / √largest_k where largest_k > 0 (a row whose entries underflowed keeps s_k:
     // / √1), in Eigen's packets: IEEE square roots and divisions, the same bits as one at a time.
