@@ -137,8 +137,8 @@ class PermutedSymmetric {
  private:
   // load_scaled's two parts. load also takes every row's largest |a_ij|, which is the first
   // sweep's maximum (s = 1 before it: |a_ij|·1·1 is |a_ij| exactly), so scale starts from it
-  // instead of a pass of its own: the same bits as five full sweeps, one pass over the matrix
-  // fewer.
+  // instead of a pass of its own: the same bits as `sweeps` full sweeps, one pass over the
+  // matrix fewer.
   Loaded load(const double* values);
   void scale(int sweeps);
   void residual(const double* b, const double* x, double* r) const;  // r = b − A x
