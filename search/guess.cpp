@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -386,9 +387,20 @@ std::array<double, 2> point_along(const Way& way, double w) {
 
 // (robot, tau, &ox, &oy); the t = N point is the target point.
 template <class Warp, class Offset>
-Paths build_paths(const Scene& scene, Warp&& warp, Offset&& offset) {
+Paths build_paths(const Scene& scene, bool meet_turners, Warp&& warp, Offset&& offset) {
   const int N = scene.steps, nr = static_cast<int>(scene.robots.size());
   Paths paths(nr, std::vector<Pose>(N + 1));
+  const std::vector<Meeting> meets = meet_turners ? meetings(scene) : std::vector<Meeting>{};
+  // The turners' meetings ("Turners" in the header): i towards j, j towards i.
+  auto meet_offset = [&](int robot, double tau, double& ox, double& oy) {
+    for (const Meeting& m : meets) {
+      if (robot != m.i && robot != m.j) continue;
+      const double peak = std::clamp(inverse_smoothstep(m.w), 0.15, 0.85);
+      const double a = m.shift * bump(tau, peak) * (robot == m.i ? 1.0 : -1.0);
+      ox += a * m.ux;
+      oy += a * m.uy;
+    }
+  };
   for (int i = 0; i < nr; ++i) {
     const Robot& rb = scene.robots[i];
     const StraightMove m = straight_move(rb);
@@ -399,6 +411,7 @@ Paths build_paths(const Scene& scene, Warp&& warp, Offset&& offset) {
       const double w = smoothstep(std::clamp(warp(i, tau), 0.0, 1.0));
       double ox = 0.0, oy = 0.0;
       offset(i, tau, ox, oy);
+      meet_offset(i, tau, ox, oy);
       project(rb, ox, oy);
       const auto at = point_along(way, w);
       paths[i][t][kX] = at[0] + ox;
@@ -412,6 +425,39 @@ Paths build_paths(const Scene& scene, Warp&& warp, Offset&& offset) {
 }
 
 }  // namespace
+
+std::vector<Meeting> meetings(const Scene& scene) {
+  const int n = static_cast<int>(scene.robots.size());
+  std::vector<char> in_conflict(n, 0);
+  for (const Conflict& c : conflicts(scene)) in_conflict[c.i] = in_conflict[c.j] = 1;
+  const std::vector<int> pushes = pushed_objects(scene);
+  std::vector<Meeting> out;
+  for (int i = 0; i < n; ++i) {
+    const Robot& rb = scene.robots[i];
+    if (rb.object || in_conflict[i] || pushes[i] >= 0 || rb.start[kOmega] != 0.0 ||
+        target_pose(rb)[kPhi] == rb.start[kPhi])
+      continue;
+    const StraightMove a = straight_move(rb);
+    double best = std::numeric_limits<double>::infinity();
+    Meeting meet;
+    for (const Pair& p : scene.pairs) {
+      if (p.mode != PairMode::kContact || (p.i != i && p.j != i)) continue;
+      const int j = p.i == i ? p.j : p.i;
+      if (scene.robots[j].object) continue;
+      const StraightMove b = straight_move(scene.robots[j]);
+      const double d0x = b.from[0] - a.from[0], d0y = b.from[1] - a.from[1];
+      const double Dx = (b.to[0] - a.to[0]) - d0x, Dy = (b.to[1] - a.to[1]) - d0y;
+      const double DD = Dx * Dx + Dy * Dy;
+      const double w = DD > 0.0 ? std::clamp(-(d0x * Dx + d0y * Dy) / DD, 0.0, 1.0) : 0.5;
+      const double rx = d0x + w * Dx, ry = d0y + w * Dy, closest = std::hypot(rx, ry);
+      if (!(closest < best) || !(closest > 0.0)) continue;
+      best = closest;
+      meet = {i, j, w, rx / closest, ry / closest, 0.5 * (closest - disco::clearance(scene, p))};
+    }
+    if (std::isfinite(best) && meet.shift > 0.0) out.push_back(meet);
+  }
+  return out;
+}
 
 Way way_around_obstacles(const Scene& scene, int robot) {
   const Robot& rb = scene.robots[robot];
@@ -481,7 +527,7 @@ Paths detour_paths(const Scene& scene, int side) {
   return detour_paths(scene, side > 0 ? 0u : ~std::uint64_t{0});
 }
 
-Paths detour_paths(const Scene& scene, std::uint64_t pattern) {
+Paths detour_paths(const Scene& scene, std::uint64_t pattern, bool meet_turners) {
   const std::vector<Conflict> cs = conflicts(scene);
   auto straight = [](int, double tau) { return tau; };
   auto offset = [&](int robot, double tau, double& ox, double& oy) {
@@ -496,7 +542,7 @@ Paths detour_paths(const Scene& scene, std::uint64_t pattern) {
       oy += a * c.ny;
     }
   };
-  return build_paths(scene, straight, offset);
+  return build_paths(scene, meet_turners, straight, offset);
 }
 
 Paths yield_paths(const Scene& scene, const StartSpec& start) {
@@ -546,7 +592,7 @@ Paths yield_paths(const Scene& scene, const StartSpec& start) {
     return std::clamp((tau - delay[robot]) / (1.0 - delay[robot]), 0.0, 1.0);
   };
   auto no_offset = [](int, double, double&, double&) {};
-  return build_paths(scene, warp, no_offset);
+  return build_paths(scene, start.meet_turners, warp, no_offset);
 }
 
 Paths perturbed_paths(const Scene& scene, const StartSpec& start) {
@@ -590,7 +636,7 @@ Paths perturbed_paths(const Scene& scene, const StartSpec& start) {
       oy += p * rb.radius * profile(shapes[robot].second, tau);
     }
   };
-  return build_paths(scene, warp, offset);
+  return build_paths(scene, start.meet_turners, warp, offset);
 }
 
 Paths retimed_paths(const RobotProblem& problem, const StartSpec& start, const Vector& z) {
@@ -613,15 +659,16 @@ Paths retimed_paths(const RobotProblem& problem, const StartSpec& start, const V
   return paths;
 }
 
-Vector smoothstep_guess(const RobotProblem& problem, double seconds) {
+Vector smoothstep_guess(const RobotProblem& problem, double seconds, bool meet_turners) {
   // Made on the scene in model units, as the solver sees it: no round trip through SI.
   auto straight = [](int, double tau) { return tau; };
   auto no_offset = [](int, double, double&, double&) {};
-  return complete_paths(problem, build_paths(problem.layout().model_scene(), straight, no_offset),
+  return complete_paths(problem,
+                        build_paths(problem.layout().model_scene(), meet_turners, straight, no_offset),
                         1.0, seconds / problem.units().time);
 }
 
-Vector straight_guess(const RobotProblem& problem, double seconds) {
+Vector straight_guess(const RobotProblem& problem, double seconds, bool meet_turners) {
   const Scene& scene = problem.scene();  // SI
   const int nr = static_cast<int>(scene.robots.size());
   std::vector<double> switch_at(nr, -1.0);  // < 0: the smoothstep
@@ -638,7 +685,7 @@ Vector straight_guess(const RobotProblem& problem, double seconds) {
     switch_at[i] = m->stop_at_end ? a2 / (a1 + a2) : 1.0;
     any = true;
   }
-  if (!any) return smoothstep_guess(problem, seconds);
+  if (!any) return smoothstep_guess(problem, seconds, meet_turners);
   const int N = scene.steps;
   auto warp = [&](int robot, double tau) {
     const double s = switch_at[robot];
@@ -654,17 +701,18 @@ Vector straight_guess(const RobotProblem& problem, double seconds) {
     return inverse_smoothstep(done / all);
   };
   auto no_offset = [](int, double, double&, double&) {};
-  return complete_guess(problem, build_paths(scene, warp, no_offset), seconds);
+  return complete_guess(problem, build_paths(scene, meet_turners, warp, no_offset), seconds);
 }
 
 Vector make_guess(const RobotProblem& problem, const StartSpec& start, double seconds) {
   switch (start.guess) {
-    case GuessKind::kStraight: return straight_guess(problem, seconds);
+    case GuessKind::kStraight: return straight_guess(problem, seconds, start.meet_turners);
     case GuessKind::kPerturbed:
       return complete_guess(problem, perturbed_paths(problem.scene(), start), seconds);
     case GuessKind::kDetour:
-      return complete_guess(problem, detour_paths(problem.scene(), start.detour_pattern), seconds);
-    case GuessKind::kPerturbedFeasible: return smoothstep_guess(problem, seconds);
+      return complete_guess(
+          problem, detour_paths(problem.scene(), start.detour_pattern, start.meet_turners), seconds);
+    case GuessKind::kPerturbedFeasible: return smoothstep_guess(problem, seconds, start.meet_turners);
     case GuessKind::kYield:
       return complete_guess(problem, yield_paths(problem.scene(), start), seconds);
     case GuessKind::kGiven: return complete_guess(problem, start.given.paths, seconds);
@@ -675,7 +723,7 @@ Vector make_guess(const RobotProblem& problem, const StartSpec& start, double se
 Paths guess_paths(const Scene& scene, const StartSpec& start) {
   switch (start.guess) {
     case GuessKind::kPerturbed: return perturbed_paths(scene, start);
-    case GuessKind::kDetour: return detour_paths(scene, start.detour_pattern);
+    case GuessKind::kDetour: return detour_paths(scene, start.detour_pattern, start.meet_turners);
     case GuessKind::kYield: return yield_paths(scene, start);
     case GuessKind::kGiven: return start.given.paths;
     case GuessKind::kStraight:
@@ -683,7 +731,7 @@ Paths guess_paths(const Scene& scene, const StartSpec& start) {
   }
   auto straight = [](int, double tau) { return tau; };
   auto no_offset = [](int, double, double&, double&) {};
-  return build_paths(scene, straight, no_offset);
+  return build_paths(scene, start.meet_turners, straight, no_offset);
 }
 
 std::optional<double> pushers_way_time(const Scene& scene) {

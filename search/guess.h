@@ -67,6 +67,22 @@
 // get the same guesses and horizons as before, bit for bit (the 18-start set of bench_starts
 // and the four other coin scenes of scenarios/, checked).
 //
+// Turners. A robot turns only by contact: its force acts at its centre and the floor's only
+// torque is a damping (core/model/reachability.h). A robot whose target phi excludes its start
+// phi, that no conflict (below) brings into contact and that pushes no object, would follow a
+// path that touches nothing, and from such guesses the feasibility solves fail: on
+// random_mixed_3_8 (`scripts/bench_random --kind mixed --seed 3`, a robot to turn by 0.958 rad
+// whose straight path stays 3.2 m from the other robot's) no start found a feasible point.
+// So the guess of a start with StartSpec::meet_turners (start 0, and starts 1, 2, 5, 6, 9, 10,
+// ... of a scene with such a robot: search/start.h) moves such a robot i and its partner j (a
+// robot, not an object, with a contact pair with i; of those, the one whose straight path,
+// timed alike, comes closest to i's) each half their closest approach's excess over the
+// pair's clearance towards the other, with the detour's bump peaking at that approach
+// (meetings(), below): they touch there and can rub. The other starts keep the paths that
+// touch nothing, whose optima can be lower where the solver finds the contact itself. From the
+// straight guess with that meeting random_mixed_3_8 reaches a certified point. Obstacles are
+// no partners yet. Scenes without a turner get the guesses they had, bit for bit.
+//
 // Conflicts. A pair (i, j) conflicts when, on the straight paths (which share the same
 // timing, so p_j - p_i = d0 + w (dN - d0) is linear in w), the centre distance drops
 // below the pair's clearance R_i + R_j (+ d_s for an avoid pair; core/model/gap.h).
@@ -181,14 +197,27 @@ struct Conflict {
 };
 std::vector<Conflict> conflicts(const Scene& scene);
 
+// Turners meet a partner ("Turners" above): robot i must turn and its straight path touches
+// nothing, so it and robot j, its contact partner whose straight path comes closest, are each
+// moved `shift` towards the other along (ux, uy) (from i to j at that closest approach, at the
+// smoothstep fraction w), which makes them touch there.
+struct Meeting {
+  int i = 0, j = 0;
+  double w = 0.5;
+  double ux = 0.0, uy = 0.0;
+  double shift = 0.0;
+};
+std::vector<Meeting> meetings(const Scene& scene);
+
 // The guesses, as described above.
-Vector smoothstep_guess(const RobotProblem& problem, double seconds);
-Vector straight_guess(const RobotProblem& problem, double seconds);
+// meet_turners: with the turners' meetings ("Turners" above; StartSpec::meet_turners).
+Vector smoothstep_guess(const RobotProblem& problem, double seconds, bool meet_turners = false);
+Vector straight_guess(const RobotProblem& problem, double seconds, bool meet_turners = false);
 // Side +1 (left) or -1 (right) for every conflicting pair.
 Paths detour_paths(const Scene& scene, int side);
 // Pair k of conflicts(scene) on the right where bit k of `pattern` is set, else on the left
 // (pairs beyond 64 on the left).
-Paths detour_paths(const Scene& scene, std::uint64_t pattern);
+Paths detour_paths(const Scene& scene, std::uint64_t pattern, bool meet_turners = false);
 Paths yield_paths(const Scene& scene, const StartSpec& start);
 Paths perturbed_paths(const Scene& scene, const StartSpec& start);
 Paths retimed_paths(const RobotProblem& problem, const StartSpec& start, const Vector& feasible);

@@ -146,7 +146,7 @@ std::string StartSpec::describe() const {
                 "zeta %g",
                 index, kind.c_str(), schedule.horizon_factor, schedule.rate, schedule.grow,
                 schedule.shrink, schedule.min_rate, elastic.zeta);
-  return line;
+  return meet_turners ? std::string(line) + ", turners meet partners" : std::string(line);
 }
 
 StartSpec with_guess(StartSpec start, Trajectory trajectory) {
@@ -197,6 +197,9 @@ StartSpec make_start(const Scene& scene, std::uint64_t seed, int index,
   s.seed = seed;
   s.schedule = base_schedule;
   s.elastic = base_elastic;
+  // Turners meet partners (search/guess.h) in start 0 and in pairs of starts, 1-2, 5-6, ...:
+  // both guess kinds of a scene without conflicts, with and without the meeting.
+  s.meet_turners = (index == 0 || (index - 1) / 2 % 2 == 0) && !meetings(scene).empty();
   if (index == 0) return s;  // the plain start: straight guess, settings as given
 
   std::mt19937_64 g = start_generator(seed, scene.name, index, 0);

@@ -67,6 +67,9 @@ struct StartSpec {
   double margin = 1.0;            // kYield: clearance multiple kept from higher-priority robots
   std::vector<int> yield_order;   // kYield: the robots, highest priority first (empty: drawn at
                                   // random from stream 1, search/guess.h)
+  bool meet_turners = false;      // a robot that must turn and touches nothing meets a partner
+                                  // in the guess (search/guess.h, "Turners"): set by make_start
+                                  // where the scene has such a robot
   Trajectory given;               // kGiven: the trajectory; the first feasibility horizon is
                                   // (1 + feasibility.guess_slack) times its T_f
   ReductionSettings schedule;     // feasibility horizon factor, reduction rate, grow, shrink, ...
