@@ -454,7 +454,11 @@ std::vector<Meeting> meetings(const Scene& scene) {
       best = closest;
       meet = {i, j, w, rx / closest, ry / closest, 0.5 * (closest - disco::clearance(scene, p))};
     }
-    if (std::isfinite(best) && meet.shift > 0.0) out.push_back(meet);
+    // Two turners that are each other's partner meet once (both moved `shift`, not twice).
+    const bool met = std::any_of(out.begin(), out.end(), [&](const Meeting& m) {
+      return m.i == meet.j && m.j == meet.i;
+    });
+    if (std::isfinite(best) && meet.shift > 0.0 && !met) out.push_back(meet);
   }
   return out;
 }

@@ -200,7 +200,8 @@ std::vector<Conflict> conflicts(const Scene& scene);
 // Turners meet a partner ("Turners" above): robot i must turn and its straight path touches
 // nothing, so it and robot j, its contact partner whose straight path comes closest, are each
 // moved `shift` towards the other along (ux, uy) (from i to j at that closest approach, at the
-// smoothstep fraction w), which makes them touch there.
+// smoothstep fraction w), which makes them touch there. Two turners that are each other's
+// partner meet once.
 struct Meeting {
   int i = 0, j = 0;
   double w = 0.5;

@@ -847,6 +847,24 @@ TEST(GuessTurners, ATurnerAndItsPartnerTouchWhereTheirStraightPathsComeClosest) 
   EXPECT_EQ(paths[0][N][kPhi], 1.0);
 }
 
+// Two turners that are each other's nearest partner meet once: each moved half the excess,
+// so they touch at the closest approach instead of overlapping.
+TEST(GuessTurners, TwoTurnersMeetOnce) {
+  std::string both(kTurnerScene);
+  both.replace(both.find("target: {x: 3, y: 0, vx: 0, vy: 0}"), 34,
+               "target: {x: 3, y: 0, vx: 0, vy: 0, phi: -0.5}");
+  const Scene scene = parse_scene(both, "two turners");
+  const std::vector<Meeting> ms = meetings(scene);
+  ASSERT_EQ(ms.size(), 1u);
+  StartSpec start;
+  start.meet_turners = true;
+  const Paths paths = guess_paths(scene, start);
+  const int N = scene.steps;
+  EXPECT_NEAR(std::hypot(paths[1][N / 2][kX] - paths[0][N / 2][kX],
+                         paths[1][N / 2][kY] - paths[0][N / 2][kY]),
+              0.8, 1e-9);
+}
+
 // Start 0 (what `disco solve` runs) meets, and the later starts in pairs: 1-2 do, 3-4 do not,
 // 5-6 do, so both guess kinds of a scene without conflicts come with and without the meeting;
 // the start's description says so. A scene without a turner never meets.
