@@ -119,16 +119,33 @@ StraightMove straight_move(const Robot& rb) {
   return {{rb.start[kX], rb.start[kY], rb.start[kPhi]}, target_pose(rb)};
 }
 
+namespace {
+
+// The closest approach of two straight moves timed alike: b − a = d0 + w D, D the relative
+// motion; w in [0, 1] (0.5 without relative motion, DD = 0), r = d0 + w D at w.
+struct Approach {
+  double Dx = 0.0, Dy = 0.0, DD = 0.0, w = 0.5, rx = 0.0, ry = 0.0, closest = 0.0;
+};
+Approach closest_approach(const StraightMove& a, const StraightMove& b) {
+  Approach c;
+  const double d0x = b.from[0] - a.from[0], d0y = b.from[1] - a.from[1];
+  c.Dx = (b.to[0] - a.to[0]) - d0x, c.Dy = (b.to[1] - a.to[1]) - d0y;
+  c.DD = c.Dx * c.Dx + c.Dy * c.Dy;
+  if (c.DD > 0.0) c.w = std::clamp(-(d0x * c.Dx + d0y * c.Dy) / c.DD, 0.0, 1.0);
+  c.rx = d0x + c.w * c.Dx, c.ry = d0y + c.w * c.Dy;
+  c.closest = std::hypot(c.rx, c.ry);
+  return c;
+}
+
+}  // namespace
+
 std::vector<Conflict> conflicts(const Scene& scene) {
   std::vector<Conflict> out;
   for (const Pair& p : scene.pairs) {
-    const StraightMove a = straight_move(scene.robots[p.i]), b = straight_move(scene.robots[p.j]);
-    const double d0x = b.from[0] - a.from[0], d0y = b.from[1] - a.from[1];
-    const double Dx = (b.to[0] - a.to[0]) - d0x, Dy = (b.to[1] - a.to[1]) - d0y;
-    const double DD = Dx * Dx + Dy * Dy;
-    if (!(DD > 0.0)) continue;  // no relative motion: the start distance stays, and it is valid
-    const double w = std::clamp(-(d0x * Dx + d0y * Dy) / DD, 0.0, 1.0);
-    const double closest = std::hypot(d0x + w * Dx, d0y + w * Dy);
+    const Approach c =
+        closest_approach(straight_move(scene.robots[p.i]), straight_move(scene.robots[p.j]));
+    if (!(c.DD > 0.0)) continue;  // no relative motion: the start distance stays, and it is valid
+    const double w = c.w, closest = c.closest, Dx = c.Dx, Dy = c.Dy, DD = c.DD;
     const double clearance = disco::clearance(scene, p);
     // Touching at the start is allowed: a relative margin keeps roundoff out.
     if (!(closest < clearance * (1.0 - 1e-12))) continue;
@@ -444,15 +461,11 @@ std::vector<Meeting> meetings(const Scene& scene) {
       if (p.mode != PairMode::kContact || (p.i != i && p.j != i)) continue;
       const int j = p.i == i ? p.j : p.i;
       if (scene.robots[j].object) continue;
-      const StraightMove b = straight_move(scene.robots[j]);
-      const double d0x = b.from[0] - a.from[0], d0y = b.from[1] - a.from[1];
-      const double Dx = (b.to[0] - a.to[0]) - d0x, Dy = (b.to[1] - a.to[1]) - d0y;
-      const double DD = Dx * Dx + Dy * Dy;
-      const double w = DD > 0.0 ? std::clamp(-(d0x * Dx + d0y * Dy) / DD, 0.0, 1.0) : 0.5;
-      const double rx = d0x + w * Dx, ry = d0y + w * Dy, closest = std::hypot(rx, ry);
-      if (!(closest < best) || !(closest > 0.0)) continue;
-      best = closest;
-      meet = {i, j, w, rx / closest, ry / closest, 0.5 * (closest - disco::clearance(scene, p))};
+      const Approach c = closest_approach(a, straight_move(scene.robots[j]));
+      if (!(c.closest < best) || !(c.closest > 0.0)) continue;
+      best = c.closest;
+      meet = {i, j, c.w, c.rx / c.closest, c.ry / c.closest,
+              0.5 * (c.closest - disco::clearance(scene, p))};
     }
     // Two turners that are each other's partner meet once (both moved `shift`, not twice).
     const bool met = std::any_of(out.begin(), out.end(), [&](const Meeting& m) {
