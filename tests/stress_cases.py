@@ -77,6 +77,10 @@ CASES = {
                             "message": "unreachable: robots 'a' and 'b' (an avoid pair): their targets "
                                        "keep their centres at most 0.8 m apart",
                             "why": "avoid pair, targets 0.8 m apart < R+R+d_s"},
+    "target_in_obstacle": {"outcome": "input_error", "key": "objects[0].target",
+                           "message": "unreachable: object 'coin' and obstacle 'post' (a contact pair): "
+                                      "its target keeps its centre at most 0.5 m from the obstacle's centre",
+                           "why": "a coin's target 0.5 m from a post's centre < R+R_obstacle"},
     # Unreachable for a reason the checks do not cover: the solve finds no feasible point.
     "object_at_target": {"outcome": "solved", "why": "an object at rest in its target, off the robot's way (avoid pair): the robot alone"},
     "heavy_object": {"outcome": "infeasible", "why": "a disk no push can slide: momentum 313 kg m/s needed, 11.3 N T_f available, T_f >= 27.7 s"},

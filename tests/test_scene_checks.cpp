@@ -120,9 +120,55 @@ TEST(SceneChecks, TargetsThatKeepTwoRobotsTooCloseAreUnreachable) {
                                 "{x: [5, 9], y: 5}")), "");
 }
 
+// One robot (R 0.5) from (0, 0) to `target`, and one obstacle, an avoid or a contact pair
+// (safe_distance 0.01 by default, as between robots).
+std::string obstacle_scene(const std::string& target, const std::string& obstacle,
+                           const std::string& mode = "avoid") {
+  return "scenario: s\nsteps: 10\n"
+         "robots:\n"
+         "  - {name: a, radius: 0.5, mass: 1, mu: 0.2, force_max: 5, start: {x: 0, y: 0}, "
+         "target: " + target + "}\n"
+         "obstacles:\n"
+         "  - {name: post, " + obstacle + ", mode: " + mode + "}\n";
+}
+
+TEST(SceneChecks, ATargetInsideAFixedObstacleIsUnreachable) {
+  // A post of radius 0.4 at (3, 0): the robot's centre must stay 0.5 + 0.4 + 0.01 = 0.91 m
+  // from its centre; a target 0.6 m away cannot be met.
+  const std::string post = "disk: {x: 3, y: 0, radius: 0.4}";
+  const std::string e = error_of(obstacle_scene("{x: 3.6, y: 0}", post));
+  EXPECT_NE(e.find("key 'robots[0].target': unreachable: robot 'a' and obstacle 'post' (an avoid "
+                   "pair): its target keeps its centre at most 0.6 m from the obstacle's centre, "
+                   "less than R + R_obstacle + safe_distance = 0.91 m"),
+            std::string::npos) << e;
+  // Just outside the clearance is fine; a contact pair may touch (0.9 m) but not overlap.
+  EXPECT_EQ(error_of(obstacle_scene("{x: 3.92, y: 0}", post)), "");
+  EXPECT_EQ(error_of(obstacle_scene("{x: 3.9, y: 0}", post, "contact")), "");
+  EXPECT_NE(error_of(obstacle_scene("{x: 3.8, y: 0}", post, "contact"))
+                .find("(a contact pair): its target keeps its centre at most 0.8 m from the "
+                      "obstacle's centre, less than R + R_obstacle = 0.9 m"),
+            std::string::npos);
+  // A box with one corner clear of the post is reachable: the farthest corner decides, not
+  // the box's centre or the nearest corner.
+  EXPECT_EQ(error_of(obstacle_scene("{x: [2.5, 3.95], y: 0}", post)), "");
+  EXPECT_NE(error_of(obstacle_scene("{x: [2.5, 3.5], y: [-0.5, 0.5]}", post)).find("unreachable"),
+            std::string::npos);  // every corner 0.71 m from the centre
+  // A target unbounded in y escapes any obstacle.
+  EXPECT_EQ(error_of(obstacle_scene("{x: 3}", post)), "");
+  // A wall: the distance to its centre line, not to its first end.
+  const std::string wall = "wall: {from: [2, -3], to: [2, 3], thickness: 0.2}";
+  EXPECT_NE(error_of(obstacle_scene("{x: 2.3, y: 2}", wall))
+                .find("at most 0.3 m from the obstacle's centre line, less than R + R_obstacle + "
+                      "safe_distance = 0.61 m"),
+            std::string::npos);
+  EXPECT_EQ(error_of(obstacle_scene("{x: 2.7, y: 2}", wall)), "");
+  // A moving obstacle is somewhere else at T_f: left to the solve.
+  EXPECT_EQ(error_of(obstacle_scene("{x: 3.6, y: 0}", "disk: {x: 3, y: 0, radius: 0.4, vx: 1}")), "");
+}
+
 TEST(SceneChecks, EveryShippedSceneThatCanBeSolvedLoads) {
   const std::set<std::string> unreachable = {"unreachable_target.yaml", "off_axis_target.yaml",
-                                             "overlapping_targets.yaml"};
+                                             "overlapping_targets.yaml", "target_in_obstacle.yaml"};
   int loaded = 0;
   for (const char* dir : {"configs/scenarios", "configs/stress"}) {
     for (const auto& e : std::filesystem::recursive_directory_iterator(std::string(DISCO_SOURCE_DIR) + "/" + dir)) {

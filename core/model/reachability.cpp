@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "core/model/floor_friction.h"
 #include "core/model/gap.h"
+#include "core/model/obstacles.h"
 #include "core/util/errors.h"
 
 namespace disco {
@@ -147,6 +149,31 @@ void overlap(const Scene& scene, const Pair& p, std::vector<Unreachable>& out) {
                              avoid ? " + safe_distance" : "", needed)});
 }
 
+void in_obstacle(const Scene& scene, const Pair& p, std::vector<Unreachable>& out) {
+  const Obstacle& ob = scene.obstacles[p.j];
+  if (ob.moves()) return;
+  const Robot& a = scene.robots[p.i];
+  const auto& lo = a.target.lower;
+  const auto& hi = a.target.upper;
+  double farthest = 0.0;
+  for (double x : {lo[kX], hi[kX]})
+    for (double y : {lo[kY], hi[kY]})
+      farthest = std::max(farthest, std::isfinite(x) && std::isfinite(y)
+                                        ? obstacle_distance(ob, {x, y}, 0.0)
+                                        : std::numeric_limits<double>::infinity());
+  const bool avoid = p.mode == PairMode::kAvoid;
+  const double needed = obstacle_clearance(scene, p);
+  if (!(farthest < needed * (1.0 - kTol))) return;
+  out.push_back({Unreachable::Rule::kInObstacle, p.i, -1,
+                 fmt::format("{} and obstacle '{}' ({} pair): its target keeps its centre at most "
+                             "{:g} m from the obstacle's {}, less than R + R_obstacle{} = {:g} m",
+                             who(scene, p.i), printable(ob.name, kEchoLimit),
+                             avoid ? "an avoid" : "a contact", farthest,
+                             ob.shape == ObstacleShape::kWall ? "centre line" : "centre",
+                             avoid ? " + safe_distance" : "", needed),
+                 p.j});
+}
+
 }  // namespace
 
 std::vector<Unreachable> unreachable_targets(const Scene& scene) {
@@ -157,6 +184,7 @@ std::vector<Unreachable> unreachable_targets(const Scene& scene) {
     no_turn(scene, r, out);
   }
   for (const Pair& p : scene.pairs) overlap(scene, p, out);
+  for (const Pair& p : scene.obstacle_pairs) in_obstacle(scene, p, out);
   return out;
 }
 

@@ -20,6 +20,12 @@
 //    velocity box without 0, is unreachable (phi and omega: kNoTurn).
 //  * kOverlap: two robots whose target boxes keep their centres closer than the pair allows
 //    at T_f: R_i + R_j + safe_distance (avoid pair) or R_i + R_j (contact pair).
+//  * kInObstacle: a robot or object whose target box keeps its centre closer to a fixed
+//    obstacle's centre (a wall's centre line) than the pair allows at T_f: R + R_obstacle +
+//    safe_distance (avoid pair) or R + R_obstacle (contact pair). The distance to a point or
+//    a segment is convex, so over a box it is largest at a corner: the rule holds when every
+//    corner is that close (a box unbounded in x or y escapes). Moving obstacles are left to
+//    the solve (where one is at T_f depends on T_f).
 // Not covered (the solve reports them as infeasible): anything that depends on the dynamics
 // over time, e.g. a robot spinning at the start whose damping stops it short of its phi target.
 #pragma once
@@ -32,14 +38,15 @@
 namespace disco {
 
 struct Unreachable {
-  enum class Rule { kOffAxis, kUntouched, kNoTurn, kOverlap };
+  enum class Rule { kOffAxis, kUntouched, kNoTurn, kOverlap, kInObstacle };
   Rule rule;
   int robot = 0;   // the robot whose target is unreachable (for kOverlap, the second robot)
   int other = -1;  // kOverlap: the first robot of the pair
   std::string reason;  // a sentence naming the robots, the quantities and the rule
+  int obstacle = -1;  // kInObstacle: the index of the obstacle in Scene::obstacles
 };
 
-// Every unreachable target of `scene`, robots in order, then pairs.
+// Every unreachable target of `scene`, robots in order, then pairs, then obstacle pairs.
 std::vector<Unreachable> unreachable_targets(const Scene& scene);
 
 // "robot 'a'" or "object 'a'", and "robots 'a' and 'b'", "objects 'a' and 'b'" or "robot 'a'
