@@ -413,7 +413,7 @@ Paths build_paths(const Scene& scene, bool meet_turners, Warp&& warp, Offset&& o
     for (const Meeting& m : meets) {
       if (robot != m.i && robot != m.j) continue;
       const double peak = std::clamp(inverse_smoothstep(m.w), 0.15, 0.85);
-      const double a = m.shift * bump(tau, peak) * (robot == m.i ? 1.0 : -1.0);
+      const double a = bump(tau, peak) * (robot == m.i ? m.shift_i : -m.shift_j);
       ox += a * m.ux;
       oy += a * m.uy;
     }
@@ -445,33 +445,41 @@ Paths build_paths(const Scene& scene, bool meet_turners, Warp&& warp, Offset&& o
 
 std::vector<Meeting> meetings(const Scene& scene) {
   const int n = static_cast<int>(scene.robots.size());
-  std::vector<char> in_conflict(n, 0);
-  for (const Conflict& c : conflicts(scene)) in_conflict[c.i] = in_conflict[c.j] = 1;
+  // Straight paths that cross in a contact pair touch; crossing in an avoid pair, they do not.
+  std::vector<char> in_contact(n, 0);
+  for (const Conflict& c : conflicts(scene))
+    for (const Pair& p : scene.pairs)
+      if (p.i == c.i && p.j == c.j && p.mode == PairMode::kContact) in_contact[c.i] = in_contact[c.j] = 1;
   const std::vector<int> pushes = pushed_objects(scene);
   std::vector<Meeting> out;
   for (int i = 0; i < n; ++i) {
     const Robot& rb = scene.robots[i];
-    if (rb.object || in_conflict[i] || pushes[i] >= 0 || rb.start[kOmega] != 0.0 ||
+    if (rb.object || in_contact[i] || pushes[i] >= 0 || rb.start[kOmega] != 0.0 ||
         target_pose(rb)[kPhi] == rb.start[kPhi])
       continue;
     const StraightMove a = straight_move(rb);
     double best = std::numeric_limits<double>::infinity();
     Meeting meet;
-    for (const Pair& p : scene.pairs) {
-      if (p.mode != PairMode::kContact || (p.i != i && p.j != i)) continue;
-      const int j = p.i == i ? p.j : p.i;
-      if (scene.robots[j].object) continue;
-      const Approach c = closest_approach(a, straight_move(scene.robots[j]));
-      if (!(c.closest < best) || !(c.closest > 0.0)) continue;
-      best = c.closest;
-      meet = {i, j, c.w, c.rx / c.closest, c.ry / c.closest,
-              0.5 * (c.closest - disco::clearance(scene, p))};
+    // Robots first; objects only when no robot is a contact partner.
+    for (const bool objects : {false, true}) {
+      if (std::isfinite(best)) break;
+      for (const Pair& p : scene.pairs) {
+        if (p.mode != PairMode::kContact || (p.i != i && p.j != i)) continue;
+        const int j = p.i == i ? p.j : p.i;
+        if (scene.robots[j].object != objects) continue;
+        const Approach c = closest_approach(a, straight_move(scene.robots[j]));
+        if (!(c.closest < best) || !(c.closest > 0.0)) continue;
+        best = c.closest;
+        const double excess = c.closest - disco::clearance(scene, p);
+        meet = {i, j, c.w, c.rx / c.closest, c.ry / c.closest, objects ? excess : 0.5 * excess,
+                objects ? 0.0 : 0.5 * excess};
+      }
     }
-    // Two turners that are each other's partner meet once (both moved `shift`, not twice).
+    // Two turners that are each other's partner meet once (each moved half, not twice).
     const bool met = std::any_of(out.begin(), out.end(), [&](const Meeting& m) {
       return m.i == meet.j && m.j == meet.i;
     });
-    if (std::isfinite(best) && meet.shift > 0.0 && !met) out.push_back(meet);
+    if (std::isfinite(best) && meet.shift_i > 0.0 && !met) out.push_back(meet);
   }
   return out;
 }

@@ -69,19 +69,22 @@
 //
 // Turners. A robot turns only by contact: its force acts at its centre and the floor's only
 // torque is a damping (core/model/reachability.h). A robot whose target phi excludes its start
-// phi, that no conflict (below) brings into contact and that pushes no object, would follow a
+// phi, that no conflict (below) of a contact pair brings into contact (a conflict of an avoid
+// pair keeps it apart) and that pushes no object, would follow a
 // path that touches nothing, and from such guesses the feasibility solves fail: on
 // random_mixed_3_8 (`scripts/bench_random --kind mixed --seed 3`, a robot to turn by 0.958 rad
 // whose straight path stays 3.2 m from the other robot's) no start found a feasible point.
 // So the guess of a start with StartSpec::meet_turners (start 0, and starts 1, 2, 5, 6, 9, 10,
 // ... of a scene with such a robot: search/start.h) moves such a robot i and its partner j (a
-// robot, not an object, with a contact pair with i; of those, the one whose straight path,
-// timed alike, comes closest to i's) each half their closest approach's excess over the
-// pair's clearance towards the other, with the detour's bump peaking at that approach
-// (meetings(), below): they touch there and can rub. The other starts keep the paths that
-// touch nothing, whose optima can be lower where the solver finds the contact itself. From the
-// straight guess with that meeting random_mixed_3_8 reaches a certified point. Obstacles are
-// no partners yet. Scenes without a turner get the guesses they had, bit for bit.
+// robot with a contact pair with i; of those, the one whose straight path, timed alike,
+// comes closest to i's) each half their closest approach's excess over the pair's clearance
+// towards the other, with the detour's bump peaking at that approach (meetings(), below):
+// they touch there and can rub. A turner whose contact pairs are all with objects (robots
+// in avoid pairs, say) meets the closest object the same way, moving the whole excess itself
+// (the object keeps its path). The other starts keep the paths that touch nothing, whose
+// optima can be lower where the solver finds the contact itself. From the straight guess
+// with that meeting random_mixed_3_8 reaches a certified point. Obstacles are no partners
+// yet. Scenes without a turner get the guesses they had, bit for bit.
 //
 // Conflicts. A pair (i, j) conflicts when, on the straight paths (which share the same
 // timing, so p_j - p_i = d0 + w (dN - d0) is linear in w), the centre distance drops
@@ -198,15 +201,16 @@ struct Conflict {
 std::vector<Conflict> conflicts(const Scene& scene);
 
 // Turners meet a partner ("Turners" above): robot i must turn and its straight path touches
-// nothing, so it and robot j, its contact partner whose straight path comes closest, are each
-// moved `shift` towards the other along (ux, uy) (from i to j at that closest approach, at the
-// smoothstep fraction w), which makes them touch there. Two turners that are each other's
-// partner meet once.
+// nothing, so it and j, its contact partner whose straight path comes closest, are moved
+// towards each other along (ux, uy) (from i to j at that closest approach, at the smoothstep
+// fraction w), i by shift_i and j by shift_j, which makes them touch there: each half the
+// excess when j is a robot, i all of it when j is an object (no force of its own to meet i
+// halfway). Two turners that are each other's partner meet once.
 struct Meeting {
   int i = 0, j = 0;
   double w = 0.5;
   double ux = 0.0, uy = 0.0;
-  double shift = 0.0;
+  double shift_i = 0.0, shift_j = 0.0;
 };
 std::vector<Meeting> meetings(const Scene& scene);
 

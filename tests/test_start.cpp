@@ -811,6 +811,18 @@ robots:
 pairs: {mode: contact, mu: 0.3}
 )";
 
+// The straight guess's paths, with or without the turners' meetings, and the centre
+// distance of disks a and b at step t on them.
+Paths straight_paths(const Scene& scene, bool meet_turners) {
+  StartSpec start;
+  start.guess = GuessKind::kStraight;
+  start.meet_turners = meet_turners;
+  return guess_paths(scene, start);
+}
+double centre_distance(const Paths& paths, int a, int b, int t) {
+  return std::hypot(paths[b][t][kX] - paths[a][t][kX], paths[b][t][kY] - paths[a][t][kY]);
+}
+
 // The turner and its partner are moved towards each other, half the excess of their
 // closest approach (3 m) over their clearance (0.8 m) each, most at that approach (tau 0.5,
 // step 10 of 20), where they touch; they never overlap, start and end where the straight
@@ -821,21 +833,14 @@ TEST(GuessTurners, ATurnerAndItsPartnerTouchWhereTheirStraightPathsComeClosest) 
   ASSERT_EQ(ms.size(), 1u);
   EXPECT_EQ(ms[0].i, 0);
   EXPECT_EQ(ms[0].j, 1);
-  EXPECT_NEAR(ms[0].shift, 0.5 * (3.0 - 0.8), 1e-12);
+  EXPECT_NEAR(ms[0].shift_i, 0.5 * (3.0 - 0.8), 1e-12);
+  EXPECT_NEAR(ms[0].shift_j, 0.5 * (3.0 - 0.8), 1e-12);
   EXPECT_NEAR(ms[0].ux, 1.0, 1e-12);
-  StartSpec start;
-  start.guess = GuessKind::kStraight;
-  start.meet_turners = true;
-  const Paths paths = guess_paths(scene, start);
+  const Paths paths = straight_paths(scene, true);
   const int N = scene.steps;
-  auto distance = [&](int t) {
-    return std::hypot(paths[1][t][kX] - paths[0][t][kX], paths[1][t][kY] - paths[0][t][kY]);
-  };
-  start.meet_turners = false;  // the plain straight paths: 3 m apart at the closest approach
-  const Paths plain = guess_paths(scene, start);
-  EXPECT_NEAR(std::hypot(plain[1][N / 2][kX] - plain[0][N / 2][kX],
-                         plain[1][N / 2][kY] - plain[0][N / 2][kY]),
-              3.0, 1e-9);
+  auto distance = [&](int t) { return centre_distance(paths, 0, 1, t); };
+  // The plain straight paths: 3 m apart at the closest approach.
+  EXPECT_NEAR(centre_distance(straight_paths(scene, false), 0, 1, N / 2), 3.0, 1e-9);
   EXPECT_NEAR(distance(N / 2), 0.8, 1e-9) << "touching at the closest approach";
   for (int t = 0; t <= N; ++t) EXPECT_GE(distance(t), 0.8 - 1e-9) << "step " << t;
   EXPECT_LT(distance(N / 2 - 2), 3.0 - 1.0) << "and near each other around it";
@@ -856,13 +861,58 @@ TEST(GuessTurners, TwoTurnersMeetOnce) {
   const Scene scene = parse_scene(both, "two turners");
   const std::vector<Meeting> ms = meetings(scene);
   ASSERT_EQ(ms.size(), 1u);
-  StartSpec start;
-  start.meet_turners = true;
-  const Paths paths = guess_paths(scene, start);
+  EXPECT_NEAR(centre_distance(straight_paths(scene, true), 0, 1, scene.steps / 2), 0.8, 1e-9);
+}
+
+// A turner whose robot partners are avoid pairs meets the object it has a contact pair with,
+// and moves the whole excess itself: the coin (at rest at its target, 3 m to the side of the
+// turner's path's midpoint) keeps its place. The other robot crosses the turner's path (a
+// conflict of an avoid pair, which keeps them apart: no contact, so it does not stop the
+// meeting). Measured on scripts/bench_random scenes: random_mixed_4_9, whose two turners
+// could touch only the object, found no certified point from start 0 in 30 s before
+// (2026-11-29).
+constexpr const char* kObjectPartnerScene = R"(
+scenario: object_partner
+steps: 20
+defaults: {radius: 0.4, mass: 1.0, mu: 0.2, force_max: 6.0, K: 8}
+robots:
+  - {name: turner, start: {x: 0, y: 0}, target: {x: 0, y: -3, vx: 0, vy: 0, phi: 1.0}}
+  - {name: crosser, start: {x: -2, y: -1.5}, target: {x: 2, y: -1.5, vx: 0, vy: 0}}
+objects:
+  - {name: coin, radius: 0.5, start: {x: 3, y: -1.5}, target: {x: 3, y: -1.5, vx: 0, vy: 0}}
+pairs: {mode: avoid}
+)";
+
+TEST(GuessTurners, ATurnerWithoutARobotToTouchMeetsAnObject) {
+  const Scene scene = parse_scene(kObjectPartnerScene, "object partner");
+  ASSERT_EQ(conflicts(scene).size(), 1u) << "the crosser crosses the turner's path";
+  const std::vector<Meeting> ms = meetings(scene);
+  ASSERT_EQ(ms.size(), 1u);
+  EXPECT_EQ(ms[0].i, 0);
+  EXPECT_EQ(ms[0].j, 2) << "the coin, not the crosser (an avoid pair)";
+  EXPECT_NEAR(ms[0].shift_i, 3.0 - 0.9, 1e-12) << "the whole excess over R + R_coin";
+  EXPECT_EQ(ms[0].shift_j, 0.0);
+  const Paths paths = straight_paths(scene, true);
   const int N = scene.steps;
-  EXPECT_NEAR(std::hypot(paths[1][N / 2][kX] - paths[0][N / 2][kX],
-                         paths[1][N / 2][kY] - paths[0][N / 2][kY]),
-              0.8, 1e-9);
+  auto distance = [&](int t) { return centre_distance(paths, 0, 2, t); };
+  EXPECT_NEAR(distance(N / 2), 0.9, 1e-9) << "touching the coin at the closest approach";
+  for (int t = 0; t <= N; ++t) {
+    EXPECT_GE(distance(t), 0.9 - 1e-9) << "step " << t;
+    EXPECT_EQ(paths[2][t][kX], 3.0) << "the coin stays, step " << t;
+    EXPECT_EQ(paths[2][t][kY], -1.5) << "the coin stays, step " << t;
+  }
+  // A crossing in a contact pair touches: no meeting needed.
+  std::string contact(kObjectPartnerScene);
+  contact.replace(contact.find("pairs: {mode: avoid}"), 20, "pairs: {mode: contact}");
+  EXPECT_TRUE(meetings(parse_scene(contact, "contact")).empty());
+  // With a robot to touch (a contact pair, its straight path 4.7 m from the turner's at the
+  // closest, the coin's 3 m), the robot is the partner, as before: robots first.
+  const std::string crossing = "start: {x: -2, y: -1.5}, target: {x: 2, y: -1.5";
+  contact.replace(contact.find(crossing), crossing.size(), "start: {x: -4, y: -6.5}, target: {x: 4, y: -6.5");
+  const std::vector<Meeting> robot_first = meetings(parse_scene(contact, "contact"));
+  ASSERT_EQ(robot_first.size(), 1u);
+  EXPECT_EQ(robot_first[0].j, 1);
+  EXPECT_EQ(robot_first[0].shift_i, robot_first[0].shift_j);
 }
 
 // Start 0 (what `disco solve` runs) meets, and the later starts in pairs: 1-2 do, 3-4 do not,
