@@ -45,6 +45,15 @@ bool has_contact_pair(const Scene& scene, int r) {
   return false;
 }
 
+// A contact pair with a disk, or with an obstacle: an obstacle's contact forces can turn a
+// robot (friction at the rim) and push it across its axis (the normal of a slanted wall),
+// though never set a disk at rest moving (it has no force of its own).
+bool touches_anything(const Scene& scene, int r) {
+  for (const Pair& p : scene.obstacle_pairs)
+    if (p.mode == PairMode::kContact && p.i == r) return true;
+  return has_contact_pair(scene, r);
+}
+
 // The robot's floor friction is symmetric about the line along `u` (none, or a
 // polygon symmetric about it).
 bool polygon_symmetric_about(const Robot& rb, double ux, double uy) {
@@ -60,14 +69,15 @@ void off_axis(const Scene& scene, int r, std::vector<Unreachable>& out) {
   const double ux = rb.force_axis[0], uy = rb.force_axis[1];
   const double nx = -uy, ny = ux;  // across the axis
   const State& s = rb.start;
-  if (rb.force_dims != 1 || has_contact_pair(scene, r) || nx * s[kVx] + ny * s[kVy] != 0.0 ||
+  if (rb.force_dims != 1 || touches_anything(scene, r) || nx * s[kVx] + ny * s[kVy] != 0.0 ||
       !polygon_symmetric_about(rb, ux, uy))
     return;
   const auto& lo = rb.target.lower;
   const auto& hi = rb.target.upper;
   const std::string why = fmt::format(
       "{} is driven along its force_axis ({:g}, {:g}) only, and nothing can push it (no contact "
-      "pair) nor drive it across that axis (floor friction only opposes motion)",
+      "pair with a disk or an obstacle) nor drive it across that axis (floor friction only "
+      "opposes motion)",
       who(scene, r), ux, uy);
   const double c = nx * s[kX] + ny * s[kY];
   if (outside(c, range(nx, ny, lo[kX], hi[kX], lo[kY], hi[kY]))) {
@@ -95,9 +105,10 @@ void off_axis(const Scene& scene, int r, std::vector<Unreachable>& out) {
 
 void no_turn(const Scene& scene, int r, std::vector<Unreachable>& out) {
   const Robot& rb = scene.robots[r];
-  if (has_contact_pair(scene, r) || rb.start[kOmega] != 0.0) return;
+  if (touches_anything(scene, r) || rb.start[kOmega] != 0.0) return;
   const std::string why = who(scene, r) +
-                          " cannot turn: nothing touches it (no contact pair), its force acts at "
+                          " cannot turn: nothing touches it (no contact pair with a disk or an "
+                          "obstacle), its force acts at "
                           "its centre and the floor's only torque is the damping -sigma_d M g omega";
   const auto& lo = rb.target.lower;
   const auto& hi = rb.target.upper;
@@ -122,7 +133,8 @@ void untouched(const Scene& scene, int r, std::vector<Unreachable>& out) {
     if (!outside(v, {lo[c], hi[c]})) continue;
     out.push_back({Unreachable::Rule::kUntouched, r, -1,
                    fmt::format("{} has no force of its own and nothing can push it (no contact "
-                               "pair), so it stays at rest at its start; its target needs {} {}, "
+                               "pair with a robot or object), so it stays at rest at its start; "
+                               "its target needs {} {}, "
                                "the start has {:g}",
                                who(scene, r), kStateNames[c], interval(lo[c], hi[c]), v)});
     return;

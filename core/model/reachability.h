@@ -3,19 +3,22 @@
 // first of these as an InputError naming the robot's target).
 //
 // Each rule holds for every horizon, so a scene it flags has no feasible point at all:
-//  * kOffAxis: a robot with force_dims 1 and no contact pair (nothing can push it), at rest
-//    across its axis at the start, whose friction polygon is symmetric about its axis (mu = 0,
+//  * kOffAxis: a robot with force_dims 1 and no contact pair with a disk or an obstacle
+//    (nothing can push it; a slanted wall's normal force could), at rest across its axis at
+//    the start, whose friction polygon is symmetric about its axis (mu = 0,
 //    or the axis at a multiple of pi/K): across the axis the floor friction never pushes (by
 //    the symmetry, maximum dissipation picks a vertex on the side opposite to any sideways
 //    velocity, so none can start), so the robot stays on the line through its start along the
 //    axis, with no velocity across it (Section III-A.1, Appendix A). A target box that misses
 //    that line, or a velocity box that excludes every velocity along the axis, is unreachable.
-//  * kNoTurn: a robot with no contact pair, at rest in rotation (omega = 0) at the start: its
-//    force acts at its centre and the floor's only torque is the damping -sigma_d M g omega,
+//  * kNoTurn: a robot with no contact pair with a disk or an obstacle (rubbing a contact
+//    obstacle turns it), at rest in rotation (omega = 0) at the start: its force acts at its
+//    centre and the floor's only torque is the damping -sigma_d M g omega,
 //    so omega stays 0 and phi stays at its start. A phi target without the start's phi, or an
 //    omega target without 0, is unreachable.
-//  * kUntouched: an object (Robot::object: no force of its own) with no contact pair, at
-//    rest at the start: no force ever acts on it but floor friction, which only opposes
+//  * kUntouched: an object (Robot::object: no force of its own) with no contact pair with a
+//    disk (a fixed obstacle never sets a disk at rest moving), at rest at the start: no force
+//    ever acts on it but floor friction, which only opposes
 //    motion, so it stays where it is. A target box without its start position, or a
 //    velocity box without 0, is unreachable (phi and omega: kNoTurn).
 //  * kOverlap: two robots whose target boxes keep their centres closer than the pair allows
