@@ -137,6 +137,28 @@ Approach closest_approach(const StraightMove& a, const StraightMove& b) {
   return c;
 }
 
+// The closest approach of a's straight path to a fixed obstacle: the distance from a point
+// moving along a segment to a point or a segment is convex in the fraction w, so a ternary
+// search finds its least. (rx, ry) points from a's centre to the obstacle's nearest point.
+Approach closest_approach(const StraightMove& a, const Obstacle& ob) {
+  auto at = [&](double w) {
+    return std::array<double, 2>{a.from[0] + w * (a.to[0] - a.from[0]), a.from[1] + w * (a.to[1] - a.from[1])};
+  };
+  double lo = 0.0, hi = 1.0;
+  for (int k = 0; k < 100; ++k) {
+    const double m1 = lo + (hi - lo) / 3.0, m2 = hi - (hi - lo) / 3.0;
+    if (obstacle_distance(ob, at(m1), 0.0) <= obstacle_distance(ob, at(m2), 0.0)) hi = m2;
+    else lo = m1;
+  }
+  Approach c;
+  c.w = 0.5 * (lo + hi);
+  const auto p = at(c.w);
+  const auto q = obstacle_point(ob, p, 0.0);
+  c.rx = q[0] - p[0], c.ry = q[1] - p[1];
+  c.closest = std::hypot(c.rx, c.ry);
+  return c;
+}
+
 }  // namespace
 
 std::vector<Conflict> conflicts(const Scene& scene) {
@@ -474,6 +496,17 @@ std::vector<Meeting> meetings(const Scene& scene) {
         meet = {i, j, c.w, c.rx / c.closest, c.ry / c.closest, objects ? excess : 0.5 * excess,
                 objects ? 0.0 : 0.5 * excess};
       }
+    }
+    // Else the closest fixed contact obstacle: rubbing it turns the robot too.
+    const bool disk_partner = std::isfinite(best);
+    for (const Pair& p : scene.obstacle_pairs) {
+      const Obstacle& ob = scene.obstacles[p.j];
+      if (disk_partner || p.i != i || p.mode != PairMode::kContact || ob.moves()) continue;
+      const Approach c = closest_approach(a, ob);
+      if (!(c.closest < best) || !(c.closest > 0.0)) continue;
+      best = c.closest;
+      meet = {i, -1, c.w, c.rx / c.closest, c.ry / c.closest, c.closest - obstacle_clearance(scene, p), 0.0};
+      meet.obstacle = p.j;
     }
     // Two turners that are each other's partner meet once (each moved half, not twice).
     const bool met = std::any_of(out.begin(), out.end(), [&](const Meeting& m) {

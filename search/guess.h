@@ -81,10 +81,11 @@
 // towards the other, with the detour's bump peaking at that approach (meetings(), below):
 // they touch there and can rub. A turner whose contact pairs are all with objects (robots
 // in avoid pairs, say) meets the closest object the same way, moving the whole excess itself
-// (the object keeps its path). The other starts keep the paths that touch nothing, whose
-// optima can be lower where the solver finds the contact itself. From the straight guess
-// with that meeting random_mixed_3_8 reaches a certified point. Obstacles are no partners
-// yet. Scenes without a turner get the guesses they had, bit for bit.
+// (the object keeps its path); one with no contact pair with any disk meets the closest
+// fixed contact obstacle the same way (its nearest point to the straight path). The other
+// starts keep the paths that touch nothing, whose optima can be lower where the solver finds
+// the contact itself. From the straight guess with that meeting random_mixed_3_8 reaches a
+// certified point. Scenes without a turner get the guesses they had, bit for bit.
 //
 // Conflicts. A pair (i, j) conflicts when, on the straight paths (which share the same
 // timing, so p_j - p_i = d0 + w (dN - d0) is linear in w), the centre distance drops
@@ -205,12 +206,14 @@ std::vector<Conflict> conflicts(const Scene& scene);
 // towards each other along (ux, uy) (from i to j at that closest approach, at the smoothstep
 // fraction w), i by shift_i and j by shift_j, which makes them touch there: each half the
 // excess when j is a robot, i all of it when j is an object (no force of its own to meet i
-// halfway). Two turners that are each other's partner meet once.
+// halfway) or when the partner is a fixed contact obstacle (j = -1, `obstacle` its index in
+// Scene::obstacles). Two turners that are each other's partner meet once.
 struct Meeting {
   int i = 0, j = 0;
   double w = 0.5;
   double ux = 0.0, uy = 0.0;
   double shift_i = 0.0, shift_j = 0.0;
+  int obstacle = -1;
 };
 std::vector<Meeting> meetings(const Scene& scene);
 

@@ -915,6 +915,67 @@ TEST(GuessTurners, ATurnerWithoutARobotToTouchMeetsAnObject) {
   EXPECT_EQ(robot_first[0].shift_i, robot_first[0].shift_j);
 }
 
+// A turner with no disk to touch meets the closest fixed contact obstacle: a post 2 m to the
+// side of its path's midpoint, or a wall whose nearest point is 1.5 m from its path. It moves
+// the whole excess itself and touches the obstacle there. Before, the input check refused
+// such a target (nothing to turn the robot); random_mixed_4_5 and 4_10, so refused, now reach
+// certified points from start 0 (2026-11-29).
+std::string lone_turner(const std::string& obstacles) {
+  return "scenario: lone_turner\nsteps: 20\n"
+         "robots:\n"
+         "  - {name: turner, radius: 0.4, mass: 1, mu: 0.2, force_max: 6, K: 8, start: {x: 0, y: 0}, "
+         "target: {x: 0, y: -3, vx: 0, vy: 0, phi: 1.0}}\n"
+         "obstacles:\n" + obstacles;
+}
+
+TEST(GuessTurners, ATurnerWithNoDiskToTouchMeetsAContactObstacle) {
+  const Scene post = parse_scene(
+      lone_turner("  - {name: far, disk: {x: -4, y: -1.5, radius: 0.3}, mode: contact}\n"
+                  "  - {name: post, disk: {x: 2, y: -1.5, radius: 0.3}, mode: contact}\n"
+                  "  - {name: near, disk: {x: 1.2, y: -1.5, radius: 0.3}, mode: avoid}\n"),
+      "post");
+  const std::vector<Meeting> ms = meetings(post);
+  ASSERT_EQ(ms.size(), 1u);
+  EXPECT_EQ(ms[0].j, -1);
+  EXPECT_EQ(ms[0].obstacle, 1) << "the closest contact obstacle (an avoid one touches nothing)";
+  // A ternary search: the distance is flat (quadratic) at its least, so w is found to about
+  // the square root of the rounding unit; the distances themselves to rounding.
+  EXPECT_NEAR(ms[0].w, 0.5, 1e-6);
+  EXPECT_NEAR(ms[0].ux, 1.0, 1e-9);
+  EXPECT_NEAR(ms[0].shift_i, 2.0 - 0.7, 1e-9);
+  const Paths paths = straight_paths(post, true);
+  const int N = post.steps;
+  auto to_post = [&](int t) { return std::hypot(paths[0][t][kX] - 2.0, paths[0][t][kY] + 1.5); };
+  EXPECT_NEAR(to_post(N / 2), 0.7, 1e-9) << "touching the post at the closest approach";
+  for (int t = 0; t <= N; ++t) EXPECT_GE(to_post(t), 0.7 - 1e-9) << "step " << t;
+  // A wall from (1.5, -2.5) to (3, -1), slanted away from the path: its first end is its
+  // nearest point.
+  const Scene wall = parse_scene(
+      lone_turner("  - {name: wall, wall: {from: [1.5, -2.5], to: [3, -1]}, mode: contact}\n"), "wall");
+  const std::vector<Meeting> mw = meetings(wall);
+  ASSERT_EQ(mw.size(), 1u);
+  EXPECT_EQ(mw[0].obstacle, 0);
+  // The wall's first end (1.5, -2.5) is nearest: the path's point (0, -2.5), 1.5 m away.
+  EXPECT_NEAR(mw[0].w, 2.5 / 3.0, 1e-6);
+  EXPECT_NEAR(mw[0].shift_i, 1.5 - 0.4, 1e-6);
+  // A robot partner, even one farther away than the post, comes first.
+  const Scene with_robot = parse_scene(
+      "scenario: with_robot\nsteps: 20\n"
+      "robots:\n"
+      "  - {name: turner, radius: 0.4, mass: 1, mu: 0.2, force_max: 6, K: 8, start: {x: 0, y: 0}, "
+      "target: {x: 0, y: -3, vx: 0, vy: 0, phi: 1.0}}\n"
+      "  - {name: other, radius: 0.4, mass: 1, mu: 0.2, force_max: 6, K: 8, start: {x: -5, y: 0}, "
+      "target: {x: -5, y: -3, vx: 0, vy: 0}}\n"
+      "pairs: {mode: contact}\n"
+      "obstacles:\n"
+      "  - {name: post, disk: {x: 2, y: -1.5, radius: 0.3}, mode: contact}\n",
+      "with_robot");
+  const std::vector<Meeting> mr = meetings(with_robot);
+  ASSERT_EQ(mr.size(), 1u);
+  EXPECT_EQ(mr[0].j, 1);
+  EXPECT_EQ(mr[0].obstacle, -1);
+}
+
 // Start 0 (what `disco solve` runs) meets, and the later starts in pairs: 1-2 do, 3-4 do not,
 // 5-6 do, so both guess kinds of a scene without conflicts come with and without the meeting;
 // the start's description says so. A scene without a turner never meets.
