@@ -172,7 +172,7 @@ std::vector<Conflict> conflicts(const Scene& scene) {
     // Touching at the start is allowed: a relative margin keeps roundoff out.
     if (!(closest < clearance * (1.0 - 1e-12))) continue;
     const double len = std::sqrt(DD);
-    out.push_back({p.i, p.j, w, -Dy / len, Dx / len, clearance});
+    out.push_back({p.i, p.j, w, -Dy / len, Dx / len, clearance, p.mode});
   }
   return out;
 }
@@ -470,8 +470,7 @@ std::vector<Meeting> meetings(const Scene& scene) {
   // Straight paths that cross in a contact pair touch; crossing in an avoid pair, they do not.
   std::vector<char> in_contact(n, 0);
   for (const Conflict& c : conflicts(scene))
-    for (const Pair& p : scene.pairs)
-      if (p.i == c.i && p.j == c.j && p.mode == PairMode::kContact) in_contact[c.i] = in_contact[c.j] = 1;
+    if (c.mode == PairMode::kContact) in_contact[c.i] = in_contact[c.j] = 1;
   const std::vector<int> pushes = pushed_objects(scene);
   std::vector<Meeting> out;
   for (int i = 0; i < n; ++i) {

@@ -198,6 +198,7 @@ struct Conflict {
   double w = 0.5;             // smoothstep fraction at the closest approach
   double nx = 0.0, ny = 0.0;  // unit normal of the relative motion
   double clearance = 0.0;     // R_i + R_j (+ d_s)
+  PairMode mode = PairMode::kAvoid;  // the pair's: crossing in a contact pair, they touch
 };
 std::vector<Conflict> conflicts(const Scene& scene);
 

@@ -182,8 +182,7 @@ void in_obstacle(const Scene& scene, const Pair& p, std::vector<Unreachable>& ou
                              who(scene, p.i), printable(ob.name, kEchoLimit),
                              avoid ? "an avoid" : "a contact", farthest,
                              ob.shape == ObstacleShape::kWall ? "centre line" : "centre",
-                             avoid ? " + safe_distance" : "", needed),
-                 p.j});
+                             avoid ? " + safe_distance" : "", needed)});
 }
 
 }  // namespace

@@ -46,7 +46,6 @@ struct Unreachable {
   int robot = 0;   // the robot whose target is unreachable (for kOverlap, the second robot)
   int other = -1;  // kOverlap: the first robot of the pair
   std::string reason;  // a sentence naming the robots, the quantities and the rule
-  int obstacle = -1;  // kInObstacle: the index of the obstacle in Scene::obstacles
 };
 
 // Every unreachable target of `scene`, robots in order, then pairs, then obstacle pairs.
