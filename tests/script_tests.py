@@ -173,17 +173,18 @@ def test_incumbent_measures():
     reaching 9.05 at 2 s. For the target 9.1: a reaches it at 0 + 9 = 9 s, b at 5 + 2 = 7 s, so
     the scene's time is 7 s and the fastest start alone took 2 s (b's own clock). With the
     scene's lowest 9.0 both end within 1 % (below 9.09), so nothing is wasted; with the lowest
-    8.95 (1 % above: 9.0395) b is above and a is not: 3 of 13 s."""
+    8.95 (1 % above: 9.0395) b is above and a is not: 3 of 13 s. The last start (a) ended 10 s
+    after the scene's first hand-out."""
     bench = load_script("bench_incumbent")
     runs = [{"status": "solved", "T_f": 9.0, "seconds": 10.0, "finished_s": 110.0,
              "history": [[4.0, 10.0], [9.0, 9.0]]},
             {"status": "dominated", "T_f": 9.05, "seconds": 3.0, "finished_s": 108.0,
              "history": [[2.0, 9.05]]}]
     best = {"scenes": {"s": {"started_s": 100.0, "T_f": 9.0}}}
-    reached, alone, T_best, n, dominated, wasted = bench.measure(runs, best, 9.1, 9.0)
-    check((reached, alone, T_best, n, dominated, wasted) == (7.0, 2.0, 9.0, 2, 1, 0.0),
-          f"measure: time 7, alone 2, best 9.0, 2 starts, 1 dominated, none wasted "
-          f"({reached}, {alone}, {T_best}, {n}, {dominated}, {wasted})")
+    reached, alone, T_best, n, dominated, wasted, ended = bench.measure(runs, best, 9.1, 9.0)
+    check((reached, alone, T_best, n, dominated, wasted, ended) == (7.0, 2.0, 9.0, 2, 1, 0.0, 10.0),
+          f"measure: time 7, alone 2, best 9.0, 2 starts, 1 dominated, none wasted, the last ended at 10 s "
+          f"({reached}, {alone}, {T_best}, {n}, {dominated}, {wasted}, {ended})")
     check(abs(bench.measure(runs, best, 9.1, 8.95)[5] - 3.0 / 13.0) < 1e-12,
           "measure: a start ending more than 1 % above the scene's lowest wastes its time")
     reached, alone = bench.measure(runs, best, 8.5, 9.0)[:2]
