@@ -62,7 +62,8 @@ Coordinator::Coordinator(const SearchPlan& plan, const std::string& out_dir, std
       incumbent_(plan.scenes.size(), kInf),
       improved_(plan.scenes.size(), false),
       screen_(screen),
-      early_(plan.scenes.size()) {
+      early_(plan.scenes.size()),
+      refines_(plan.scenes.size()) {
   for (std::size_t s = 0; s < plan.scenes.size(); ++s)  // a resumed run's bests
     if (const auto b = record_.best_value(static_cast<int>(s))) lower_incumbent(static_cast<int>(s), *b);
   advance_stages(seconds());  // a resumed run's scenes whose screens all ended
@@ -94,6 +95,7 @@ void Coordinator::add_early_refines(int s) {
     if (is_final(o, job)) ended.push_back(screened_of(k, o, false));
   for (int k : early_refine_choice(ended, job.starts, screen_.early_batch)) {
     if (!early_[s].insert(k).second) continue;
+    refines_[s].insert(k);
     const bool done = record_.done().count({s, k}) > 0;  // refined in an earlier run
     const double value = screens.at(k).value;
     spdlog::info("{}: early refine of start {} ({:.6f}: the best of screens {}-{}){}", job.scene.name, k,
@@ -126,6 +128,7 @@ void Coordinator::advance_stages(double now) {
     std::vector<Task> tasks;
     std::string words;
     for (int k : chosen) {
+      refines_[s].insert(k);
       const auto it = screens.find(k);
       words += fmt::format("{}{} ({:.6f})", words.empty() ? "" : ", ", k,
                            it != screens.end() ? it->second.value : std::nan(""));
@@ -138,6 +141,30 @@ void Coordinator::advance_stages(double now) {
                  early_[s].empty() ? std::string() : fmt::format(" ({} early)", early_[s].size()));
     queue_.add_refines(s, static_cast<int>(chosen.size()), tasks);
   }
+}
+
+bool Coordinator::add_fill_refine(double now) {
+  int best_s = -1, best_k = -1;
+  for (std::size_t i = 0; i < plan_.scenes.size(); ++i) {
+    const int s = static_cast<int>(i);
+    if (!queue_.may_fill(s, now) || (best_s >= 0 && refines_[s].size() >= refines_[best_s].size())) continue;
+    std::vector<Screened> screened;
+    for (const auto& [k, o] : record_.screened(s)) screened.push_back(screened_of(k, o, true));
+    for (int k : refine_choice(screened, static_cast<int>(screened.size())))
+      if (!refines_[s].count(k) && !record_.done().count({s, k})) {
+        best_s = s;
+        best_k = k;
+        break;
+      }
+  }
+  if (best_s < 0) return false;
+  refines_[best_s].insert(best_k);
+  const auto task = refine_task(best_s, best_k);
+  if (!task) return add_fill_refine(now);  // its screened answer is missing (warned): the next
+  spdlog::info("{}: time left: refining start {} ({:.6f}), the next best screen", plan_.scenes[best_s].scene.name,
+               best_k, record_.screened(best_s).at(best_k).value);
+  queue_.add_fill_refine(*task);
+  return true;
 }
 
 void Coordinator::lower_incumbent(int s, double value) {
@@ -203,6 +230,7 @@ std::optional<Task> Coordinator::next_locked(int rank) {
   const double now = seconds();
   advance_stages(now);
   auto task = queue_.next(rank, now);
+  if (!task && add_fill_refine(now)) task = queue_.next(rank, now);
   if (task) task->incumbent = task->stage == Stage::kScreen ? kInf : incumbent_[task->scene];
   return task;
 }

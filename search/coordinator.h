@@ -26,7 +26,9 @@
 // a scene's screens is open, the coordinator chooses its refines (refine_choice over the
 // recorded screens) and queues them with their screened solution files; with early refines
 // (search.early_refine_batch) it queues each as soon as early_refine_choice decides it, and the
-// final choice skips the starts refined early. A rank that asks for
+// final choice skips the starts refined early. Under a time limit, a rank that would otherwise
+// idle once a scene's chosen refines are handed out gets the scene's next screened start in the
+// same ranking (add_fill_refine): the limit, not refine_count, ends the refines. A rank that asks for
 // work while only refines still to come could give it some waits: rank 0's own worker in
 // await_work(), a worker rank by getting no reply until take_outbox() has a task (or kStop)
 // for it.
@@ -125,6 +127,11 @@ class Coordinator {
   // The refine of start k of scene s from its screened solution file; none (with a warning)
   // if that file cannot be read.
   std::optional<Task> refine_task(int s, int k) const;
+  // Under a time limit with nothing else to hand out: queues the next refine of the scene with
+  // the fewest refines so far (ties: the lower index) that may take one (TaskQueue::may_fill)
+  // and has a certified screen not yet refined, the next in refine_choice's ranking of all its
+  // screens. False if there is none.
+  bool add_fill_refine(double now);
   std::optional<Task> next_locked(int rank);
 
   const SearchPlan& plan_;
@@ -138,6 +145,7 @@ class Coordinator {
   ScreenSettings screen_;
   std::set<int> waiting_;          // worker ranks without a reply (waiting for refines)
   std::vector<std::set<int>> early_;  // per scene: the starts chosen for an early refine
+  std::vector<std::set<int>> refines_;  // per scene: every start chosen for a refine (any kind)
   std::condition_variable recorded_;  // notified at every record()
 };
 

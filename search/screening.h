@@ -12,6 +12,10 @@
 //            (a start of kind kGiven, as with --guess: search/trajectory.h), keeping the
 //            start's own schedule. Its outcome is the start's (stage "refine"): the scene's
 //            best is always a refined, full-N_t, certified answer.
+//   fill     under a time limit (the search's or the scene's own), the limit and not
+//            refine_count ends the refines: once the chosen ones are handed out, a rank that
+//            would idle refines the next screen of refine_choice's ranking of all the
+//            scene's screens (search/coordinator.h, add_fill_refine).
 //   early    with search.early_refine_batch B > 0, refines also start while the scene is
 //            still screening (early_refine_choice): after every batch of B screens (starts
 //            0..B−1, B..2B−1, ...) has ended, the batch's best screen is refined at once if

@@ -113,6 +113,19 @@ void TaskQueue::add_early_refine(int s, const std::optional<Task>& task) {
   if (task) pending_.insert(pending_.begin() + refines_end(), *task);
 }
 
+bool TaskQueue::may_fill(int s, double now) const {
+  const SceneJob& job = plan_.scenes[s];
+  const SceneState& sc = scenes_[s];
+  if (!screen_.on() || !sc.refined || !(time_limit_ > 0 || job.time_limit > 0)) return false;
+  if (time_limit_ > 0 && now >= time_limit_) return false;
+  return !(job.time_limit > 0 && sc.started_s >= 0 && now - sc.started_s >= job.time_limit);
+}
+
+void TaskQueue::add_fill_refine(const Task& task) {
+  ++total_;
+  pending_.insert(pending_.begin() + refines_end(), task);
+}
+
 bool TaskQueue::refines_to_come(double now) const {
   if (!screen_.on() || (time_limit_ > 0 && now >= time_limit_)) return false;
   for (std::size_t s = 0; s < scenes_.size(); ++s) {

@@ -15,7 +15,9 @@
 // refines are added by the coordinator (add_refines) once none of its screens is open, and run
 // before the screens still pending; so are its early refines (add_early_refine), added one at
 // a time while it screens. Refines run in the order they were added. Under a time limit, screens are handed out only until the
-// screening share of it (search.screen_share) is used, and their budgets end there.
+// screening share of it (search.screen_share) is used, and their budgets end there; once a
+// scene's chosen refines are handed out, the time left goes to more of its refines
+// (add_fill_refine), which the coordinator adds one at a time when a rank would otherwise idle.
 //
 // Not thread-safe: search/coordinator.h guards it.
 #pragma once
@@ -83,6 +85,12 @@ class TaskQueue {
   // One early refine of scene s (search/screening.h), to run next; counted in total() whether
   // it runs or not (none: it ended in an earlier run, or its screen's answer is missing).
   void add_early_refine(int s, const std::optional<Task>& task);
+  // Whether scene s may take a refine beyond its choice at `now` (search/screening.h, "fill"):
+  // its refines were added, a time limit bounds it (the search's or its own), and neither has
+  // passed.
+  bool may_fill(int s, double now) const;
+  // One such refine of scene s, to run next; counted in total().
+  void add_fill_refine(const Task& task);
   // Whether refines may still be added: a scene with screening whose refines are not, and
   // whose time limit (and the search's) has not passed. A rank then waits for work.
   bool refines_to_come(double now) const;

@@ -324,6 +324,55 @@ TEST(ScreenedSearch, EarlyRefinesRunBetweenBatchesOfScreensAndNothingTwiceAfterA
   EXPECT_EQ(best["starts_finished"], 7);
 }
 
+// Under a time limit the chosen refines do not end the search: while time is left, a rank that
+// would idle refines the next screen of the same ranking (the best of each class first, then by
+// screened T_f), never an uncertified screen nor one refined already, until none is left. The
+// limit here is far beyond the made-up outcomes' milliseconds, so no verdict depends on speed.
+TEST(ScreenedSearch, UnderATimeLimitTheTimeLeftRefinesTheNextBestScreens) {
+  const SearchPlan plan = load_search_plan({config("scenarios/one_robot_axis.yaml")}, 5, 1, {});
+  using Handed = std::vector<std::pair<Stage, int>>;
+  // Screens: start 4 without a certified point; 2 (a, 2.0), 3 (a, 2.5), 0 (a, 3.0), 1 (b, 4.0).
+  auto uncertified_4 = [](const Task& t, json& m) {
+    if (t.stage == Stage::kScreen && t.start == 4) {
+      m["outcome"]["status"] = "infeasible";
+      m["outcome"]["T_f"] = m["outcome"]["value"] = nullptr;
+    }
+  };
+  auto screened = [](int k) { return k == 4 ? 9.0 : screened_T_f(k); };
+  auto run = [&](Coordinator& c) {
+    Handed handed;
+    while (const auto t = c.next(0)) {
+      handed.push_back({t->stage, t->start});
+      if (handed.size() > 20) break;  // a start refined again and again would never end
+      const double T_f = t->stage == Stage::kScreen ? screened(t->start) : refined_T_f(t->start);
+      json m = outcome_message(plan, *t, T_f, class_of(t->start));
+      uncertified_4(*t, m);
+      c.record(StartOutcome::from_json(m["outcome"]), &m["solution"]);
+    }
+    return handed;
+  };
+  const Handed screens = {{Stage::kScreen, 0}, {Stage::kScreen, 1}, {Stage::kScreen, 2},
+                          {Stage::kScreen, 3}, {Stage::kScreen, 4}};
+  {  // No time limit: refine_count (1) refines, then the end.
+    Coordinator c(plan, fresh_dir("fill_none"), 1, 0.0, false, false, {}, screening(1));
+    Handed expected = screens;
+    expected.insert(expected.end(), {{Stage::kRefine, 2}});
+    EXPECT_EQ(run(c), expected);
+    EXPECT_FALSE(c.await_work());
+  }
+  const std::string dir = fresh_dir("fill");
+  Coordinator c(plan, dir, 1, /*time limit, s*/ 3600.0, false, false, {}, screening(1));
+  Handed expected = screens;  // the choice (2), then class b's best (1), then 3 and 0 by T_f
+  expected.insert(expected.end(), {{Stage::kRefine, 2}, {Stage::kRefine, 1}, {Stage::kRefine, 3}, {Stage::kRefine, 0}});
+  EXPECT_EQ(run(c), expected);
+  EXPECT_FALSE(c.await_work()) << "every certified screen is refined: nothing is left to come";
+  c.finish();
+  const json best = json::parse(std::ifstream(dir + "/best.json"));
+  EXPECT_EQ(best["starts_total"], 9) << "5 screens and 4 refines";
+  EXPECT_EQ(best["starts_finished"], 9);
+  EXPECT_EQ(best["scenes"]["one_robot_axis"]["start"], 0) << "refined T_f 5 + start: a fill refine's is lowest";
+}
+
 TEST(ScreenedSearch, WithoutScreeningEveryTaskIsAFullStart) {
   const SearchPlan plan = load_search_plan({config("scenarios/one_robot_axis.yaml")}, 3, 1, {});
   TaskQueue q(plan, 0.0, {});
@@ -352,6 +401,20 @@ TEST(ScreenedSearch, UnderATimeLimitScreensStopAtTheShareAndTheirBudgetsEndThere
   EXPECT_FALSE(q.screens_open(0, 50.0));
   EXPECT_TRUE(q.refines_to_come(50.0));
   EXPECT_FALSE(q.refines_to_come(100.0)) << "the search's limit has passed";
+  EXPECT_FALSE(q.may_fill(0, 50.0)) << "no refine beyond the choice before the choice";
+  q.add_refines(0, 0, {});
+  EXPECT_TRUE(q.may_fill(0, 50.0));
+  EXPECT_FALSE(q.may_fill(0, 100.0)) << "the search's limit has passed";
+  TaskQueue unlimited(plan, 0.0, {}, {}, screening(1));
+  unlimited.add_refines(0, 0, {});
+  EXPECT_FALSE(unlimited.may_fill(0, 50.0)) << "without a time limit, refine_count ends the refines";
+  SearchPlan own = plan;  // a scene's own limit (a benchmark file's time_limit), from its first hand-out
+  own.scenes[0].time_limit = 40.0;
+  TaskQueue scene_limited(own, 0.0, {}, {}, screening(1));
+  ASSERT_TRUE(scene_limited.next(0, 10.0));
+  scene_limited.add_refines(0, 0, {});
+  EXPECT_TRUE(scene_limited.may_fill(0, 49.0));
+  EXPECT_FALSE(scene_limited.may_fill(0, 50.0)) << "the scene's 40 s from its first hand-out at 10 s";
 }
 
 }  // namespace
