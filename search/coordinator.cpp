@@ -115,8 +115,7 @@ void Coordinator::advance_stages(double now) {
     if (queue_.screens_open(s, now)) continue;
     const std::string& name = plan_.scenes[i].scene.name;
     const std::map<int, StartOutcome> screens = record_.screened(s);
-    std::vector<Screened> screened;
-    for (const auto& [k, o] : screens) screened.push_back(screened_of(k, o, true));
+    const std::vector<Screened> screened = ranked_screens(s);
     std::vector<int> chosen = refine_choice(screened, screen_.refine_count);
     // A resumed run also finishes the refines an earlier run chose under a time limit, from
     // the screens it had then: they are recorded, and one cut short runs again.
@@ -143,13 +142,18 @@ void Coordinator::advance_stages(double now) {
   }
 }
 
+std::vector<Screened> Coordinator::ranked_screens(int s) const {
+  std::vector<Screened> out;
+  for (const auto& [k, o] : record_.screened(s)) out.push_back(screened_of(k, o, true));
+  return out;
+}
+
 bool Coordinator::add_fill_refine(double now) {
   int best_s = -1, best_k = -1;
   for (std::size_t i = 0; i < plan_.scenes.size(); ++i) {
     const int s = static_cast<int>(i);
     if (!queue_.may_fill(s, now) || (best_s >= 0 && refines_[s].size() >= refines_[best_s].size())) continue;
-    std::vector<Screened> screened;
-    for (const auto& [k, o] : record_.screened(s)) screened.push_back(screened_of(k, o, true));
+    const std::vector<Screened> screened = ranked_screens(s);
     for (int k : refine_choice(screened, static_cast<int>(screened.size())))
       if (!refines_[s].count(k) && !record_.done().count({s, k})) {
         best_s = s;
@@ -163,7 +167,7 @@ bool Coordinator::add_fill_refine(double now) {
   if (!task) return add_fill_refine(now);  // its screened answer is missing (warned): the next
   spdlog::info("{}: time left: refining start {} ({:.6f}), the next best screen", plan_.scenes[best_s].scene.name,
                best_k, record_.screened(best_s).at(best_k).value);
-  queue_.add_fill_refine(*task);
+  queue_.add_refine(task);
   return true;
 }
 

@@ -132,6 +132,8 @@ class Coordinator {
   // and has a certified screen not yet refined, the next in refine_choice's ranking of all its
   // screens. False if there is none.
   bool add_fill_refine(double now);
+  // Scene s's recorded screens as the refine choices rank them (with their classes).
+  std::vector<Screened> ranked_screens(int s) const;
   std::optional<Task> next_locked(int rank);
 
   const SearchPlan& plan_;

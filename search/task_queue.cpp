@@ -108,7 +108,10 @@ std::ptrdiff_t TaskQueue::refines_end() const {
 }
 
 void TaskQueue::add_early_refine(int s, const std::optional<Task>& task) {
-  if (scenes_[s].refined) return;
+  if (!scenes_[s].refined) add_refine(task);
+}
+
+void TaskQueue::add_refine(const std::optional<Task>& task) {
   ++total_;
   if (task) pending_.insert(pending_.begin() + refines_end(), *task);
 }
@@ -119,11 +122,6 @@ bool TaskQueue::may_fill(int s, double now) const {
   if (!screen_.on() || !sc.refined || !(time_limit_ > 0 || job.time_limit > 0)) return false;
   if (time_limit_ > 0 && now >= time_limit_) return false;
   return !(job.time_limit > 0 && sc.started_s >= 0 && now - sc.started_s >= job.time_limit);
-}
-
-void TaskQueue::add_fill_refine(const Task& task) {
-  ++total_;
-  pending_.insert(pending_.begin() + refines_end(), task);
 }
 
 bool TaskQueue::refines_to_come(double now) const {

@@ -17,7 +17,7 @@
 // a time while it screens. Refines run in the order they were added. Under a time limit, screens are handed out only until the
 // screening share of it (search.screen_share) is used, and their budgets end there; once a
 // scene's chosen refines are handed out, the time left goes to more of its refines
-// (add_fill_refine), which the coordinator adds one at a time when a rank would otherwise idle.
+// (add_refine), which the coordinator adds one at a time when a rank would otherwise idle.
 //
 // Not thread-safe: search/coordinator.h guards it.
 #pragma once
@@ -89,8 +89,10 @@ class TaskQueue {
   // its refines were added, a time limit bounds it (the search's or its own), and neither has
   // passed.
   bool may_fill(int s, double now) const;
-  // One such refine of scene s, to run next; counted in total().
-  void add_fill_refine(const Task& task);
+  // One refine more (early or beyond the choice), to run after the refines pending; counted in
+  // total() whether it runs or not (none: it ended in an earlier run, or its screen's answer is
+  // missing).
+  void add_refine(const std::optional<Task>& task);
   // Whether refines may still be added: a scene with screening whose refines are not, and
   // whose time limit (and the search's) has not passed. A rank then waits for work.
   bool refines_to_come(double now) const;
