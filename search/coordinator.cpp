@@ -71,6 +71,13 @@ Coordinator::Coordinator(const SearchPlan& plan, const std::string& out_dir, std
 }
 
 std::optional<Task> Coordinator::refine_task(int s, int k) const {
+  if (screen_.refine_from == RefineFrom::kStart) {  // its own guess: no screened answer needed
+    Task t;
+    t.scene = s;
+    t.start = k;
+    t.stage = Stage::kRefine;
+    return t;
+  }
   const std::string& name = plan_.scenes[s].scene.name;
   const std::string file = record_.screened_file(name, k);
   std::ifstream in(file);

@@ -124,8 +124,8 @@ class Coordinator {
   void advance_stages(double now);
   // Scene s's early refines decided since the last call, queued (screening only).
   void add_early_refines(int s);
-  // The refine of start k of scene s from its screened solution file; none (with a warning)
-  // if that file cannot be read.
+  // The refine of start k of scene s: from its screened solution file (none, with a warning,
+  // if that file cannot be read), or with search.refine_from "start" from its own guess.
   std::optional<Task> refine_task(int s, int k) const;
   // Under a time limit with nothing else to hand out: queues the next refine of the scene with
   // the fewest refines so far (ties: the lower index) that may take one (TaskQueue::may_fill)

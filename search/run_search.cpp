@@ -72,10 +72,11 @@ StartOutcome run_task(const Context& c, const Task& t, json* solution, const Inc
     guess.paths = resample(guess.paths, scene.steps);
     spec = with_guess(spec, guess);
   }
-  if (t.stage == Stage::kRefine) {  // from its screened answer
+  StartSpec from_screen;
+  if (t.stage == Stage::kRefine && !t.guess.is_null()) {  // from its screened answer
     try {
-      spec = with_guess(spec, trajectory_from_solution(t.guess, scene,
-                                                       fmt::format("screened start {}", t.start)));
+      from_screen = with_guess(spec, trajectory_from_solution(t.guess, scene,
+                                                              fmt::format("screened start {}", t.start)));
     } catch (const std::exception& e) {  // an error outcome, as run_start makes them
       StartOutcome o;
       o.scene = scene.name;
@@ -97,13 +98,34 @@ StartOutcome run_task(const Context& c, const Task& t, json* solution, const Inc
       if (link.found && r.improved) link.found(r.value);
     };
   }
-  StartOutcome o = run_start(scene, c.settings, spec, t.budget, t.source, solution, on_solve,
-                             link.incumbent);
-  if (solution != nullptr && !solution->is_null())
-    (*solution)["provenance"] = provenance_json(
-        {"search", scene.source, job.overrides, c.sets, c.seed, t.start,
-         guessed ? job.guess.source : std::string()},
-        c.settings);
+  const auto run = [&](const StartSpec& s, double budget, json* sol) {
+    StartOutcome o = run_start(scene, c.settings, s, budget, t.source, sol, on_solve, link.incumbent);
+    if (sol != nullptr && !sol->is_null())
+      (*sol)["provenance"] = provenance_json(
+          {"search", scene.source, job.overrides, c.sets, c.seed, t.start,
+           guessed ? job.guess.source : std::string()},
+          c.settings);
+    return o;
+  };
+  StartOutcome o;
+  if (t.stage != Stage::kRefine || t.guess.is_null()) {
+    o = run(spec, t.budget, solution);
+  } else if (c.screen.refine_from != RefineFrom::kBoth) {
+    o = run(from_screen, t.budget, solution);
+  } else {  // from the screen, then from the start in the budget left: the better one
+    json first_solution, second_solution;
+    o = run(from_screen, t.budget, solution != nullptr ? &first_solution : nullptr);
+    const double left = t.budget > 0 ? t.budget - o.seconds : 0.0;
+    if (!o.cut_short() && !interrupt_requested() && (t.budget <= 0 || left > 0)) {
+      const StartOutcome second = run(spec, left, solution != nullptr ? &second_solution : nullptr);
+      const bool second_kept = second.certified() && (!o.certified() || second.value < o.value);
+      o = better_of(o, second);
+      if (solution != nullptr) *solution = std::move(second_kept ? second_solution : first_solution);
+    } else {
+      if (!o.cut_short()) o.status = interrupt_requested() ? StartStatus::kInterrupted : StartStatus::kTimeLimit;
+      if (solution != nullptr) *solution = std::move(first_solution);
+    }
+  }
   o.rank = c.rank;
   o.stage = t.stage;
   spdlog::debug("  {} start {}: {}", scene.name, t.start, o.stopped);

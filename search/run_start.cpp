@@ -1,6 +1,9 @@
 #include "search/run_start.h"
 
+#include <spdlog/fmt/fmt.h>
+
 #include <cmath>
+#include <limits>
 #include <exception>
 #include <new>
 #include <stdexcept>
@@ -150,6 +153,41 @@ StartOutcome StartOutcome::from_json(const json& j) {
   if (j.contains("incumbent")) o.incumbent = number_or_nan(j["incumbent"]);
   o.rank = j.value("rank", 0);
   o.finished_s = j.value("finished_s", -1.0);
+  return o;
+}
+
+StartOutcome better_of(const StartOutcome& first, const StartOutcome& second) {
+  const bool second_kept = second.certified() && (!first.certified() || second.value < first.value);
+  StartOutcome o = second_kept ? second : first;
+  const double dt = first.seconds;
+  o.seconds = first.seconds + second.seconds;
+  o.nlp_solves = first.nlp_solves + second.nlp_solves;
+  o.iterations = first.iterations + second.iterations;
+  o.kkt_factorisations = first.kkt_factorisations + second.kkt_factorisations;
+  o.kkt_fallbacks = first.kkt_fallbacks + second.kkt_fallbacks;
+  o.kkt_threshold_raises = first.kkt_threshold_raises + second.kkt_threshold_raises;
+  o.kkt_to_pivoted = first.kkt_to_pivoted + second.kkt_to_pivoted;
+  o.kkt_nested_dissection = first.kkt_nested_dissection + second.kkt_nested_dissection;
+  o.time_to_first_feasible = first.time_to_first_feasible >= 0 ? first.time_to_first_feasible
+                             : second.time_to_first_feasible >= 0 ? dt + second.time_to_first_feasible
+                                                                  : -1.0;
+  if (second_kept) o.time_to_best = dt + second.time_to_best;
+  o.history = first.history;
+  double least = first.history.empty() ? std::numeric_limits<double>::infinity() : first.history.back()[1];
+  for (const auto& [s, value] : second.history)
+    if (value < least) {
+      o.history.push_back({dt + s, value});
+      least = value;
+    }
+  if (second.cut_short()) o.status = second.status;
+  o.guess = first.guess;
+  o.budget = first.budget;
+  o.budget_source = first.budget_source;
+  o.incumbent = second.incumbent;
+  o.stopped = fmt::format("{} (refined from its screen: {}; from its start: {}; the {} kept)", o.stopped,
+                          first.certified() ? fmt::format("{:.6f}", first.value) : to_string(first.status),
+                          second.certified() ? fmt::format("{:.6f}", second.value) : to_string(second.status),
+                          second_kept ? "start's" : "screen's");
   return o;
 }
 

@@ -104,6 +104,15 @@ struct StartOutcome {
   static StartOutcome from_json(const nlohmann::json& j);
 };
 
+// One outcome of two runs of the same start one after the other (search.refine_from "both": a
+// refine from its screened answer, then from its own guess in the budget `first` left): the
+// second's point when it is certified and below the first's (J), else the first's; seconds,
+// solves, iterations and KKT counts summed; times within the start and the history (every new
+// best of the two in turn) counted from the first's start; `stopped` says which run was kept.
+// Cut short if the second was (it must run again); the first's guess kind (its screen's answer:
+// search/search_record.h treats the outcome as a refine from its screen) and budget.
+StartOutcome better_of(const StartOutcome& first, const StartOutcome& second);
+
 // Runs `start` on `scene` with a time budget (s; 0 = none) set by `budget_source`; `solution`
 // (if not null) receives the solution file of the best point (schema: core/model/solution.h);
 // `on_solve` (if set) is called after every elastic-mode solve; `incumbent` (if set) gives the

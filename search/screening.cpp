@@ -7,6 +7,7 @@
 #include <map>
 #include <set>
 
+#include "core/config/solver_settings.h"
 #include "core/util/errors.h"
 
 namespace disco {
@@ -25,6 +26,8 @@ ScreenSettings screen_settings(const Settings& s) {
   if (!(out.share > 0 && out.share < 1)) refuse("search.screen_share", "must be above 0 and below 1");
   out.early_batch = s.integer("search.early_refine_batch");
   if (out.early_batch < 0) refuse("search.early_refine_batch", "must be >= 0 (0: no early refines)");
+  out.refine_from = choice<RefineFrom>(s, "search.refine_from",
+                                       {{"screen", RefineFrom::kScreen}, {"start", RefineFrom::kStart}, {"both", RefineFrom::kBoth}});
   return out;
 }
 

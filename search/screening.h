@@ -10,8 +10,10 @@
 //            screening share of it is used), refine_choice() picks up to refine_count
 //            screened starts; each runs at full N_t from its screened answer resampled to N_t
 //            (a start of kind kGiven, as with --guess: search/trajectory.h), keeping the
-//            start's own schedule. Its outcome is the start's (stage "refine"): the scene's
-//            best is always a refined, full-N_t, certified answer.
+//            start's own schedule; or, with search.refine_from "start", from the start's own
+//            guess, as a search without screening runs it; or, with "both", the first and then
+//            the second, keeping the better. Its outcome is the start's (stage "refine"): the
+//            scene's best is always a refined, full-N_t, certified answer.
 //   fill     under a time limit (the search's or the scene's own), the limit and not
 //            refine_count ends the refines: once the chosen ones are handed out, a rank that
 //            would idle refines the next screen of refine_choice's ranking of all the
@@ -37,11 +39,20 @@
 namespace disco {
 
 // search.screen_fraction, search.refine_count, search.screen_share of the settings.
+// Where a refine starts (search.refine_from): kScreen, from the start's screened answer
+// resampled to N_t (as with --guess); kStart, from the start's own guess with its whole
+// objective reduction, as the start runs in a search without screening (the screen then only
+// chooses which starts run at full N_t, and in what order); kBoth, from the screen and then,
+// in the budget left, from the start, the refine's outcome being the better of the two (the
+// two land in different local optima: search/README.md, "Screening").
+enum class RefineFrom { kScreen, kStart, kBoth };
+
 struct ScreenSettings {
   double fraction = 0.0;  // 0: no screening (every start at full N_t, as without stages)
   int refine_count = 0;   // refines per scene, at most
   double share = 0.0;     // under a time limit: the share of it screens may use
   int early_batch = 0;    // search.early_refine_batch: screens per batch (0: no early refines)
+  RefineFrom refine_from = RefineFrom::kScreen;  // search.refine_from
   bool on() const { return fraction > 0.0; }
 };
 // InputError naming the key for a value out of its range.

@@ -45,7 +45,8 @@ struct Task {
   double budget = 0.0;       // s; 0 = none
   BudgetSource source = BudgetSource::kNone;  // the limit that set the budget
   double incumbent = kInf;  // s: its scene's shared incumbent when handed out (+inf: none)
-  nlohmann::json guess;     // kRefine: the start's screened solution document (else null)
+  nlohmann::json guess;     // kRefine: the start's screened solution document (null: a refine
+                            // from the start's own guess, search.refine_from "start"; else null)
   nlohmann::json to_json() const;             // the message that hands it to a worker
   static Task from_json(const nlohmann::json& j);
 };

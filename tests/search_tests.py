@@ -45,6 +45,12 @@ killrandom) runs --deterministic.
                search.early_refine_batch 1), every start's screen and refine compared; timelimit_screened: on
                the simulated clock, a limit cuts the same runs twice, and --resume without it
                ends with the runs and best of a clean screened run.
+  refinefrom   a screened search with search.refine_from start (2 ranks): every refine ends
+               with the status, T_f (bit for bit), iterations and guess of the same start in a
+               search without screening, every certified screen is refined (the smoke
+               benchmark's scene limit), and the best refine is the scene's best; with
+               refine_from both, every refine is the better of the same start's refine from
+               its screen (refine_from screen) and its full run, with both runs' iterations.
   logging      logs go to stderr and results to files (stdout stays empty): the progress
                line by default, a live status line on a terminal only, nothing with --quiet, every start's solve log and every
                Ipopt solve with --verbose (each line naming its rank); the same for
@@ -276,6 +282,50 @@ elif MODE == "determinism":
     ba, bb = best(a)["scenes"], best(b)["scenes"]
     check({k: (v["T_f"], v.get("start")) for k, v in ba.items()} ==
           {k: (v["T_f"], v.get("start")) for k, v in bb.items()}, "same best T_f and start per scene")
+elif MODE == "refinefrom":
+    # search.refine_from start: a refine is the start's own run at full N_t, so each refine of
+    # a screened search ends exactly where the same start ends in a search without screening.
+    a, b = os.path.join(WORK, "full"), os.path.join(WORK, "refine_from_start")
+    check(search(a, 2, "--deterministic") == 0, "2-rank search without screening exits 0")
+    check(search(b, 2, *DET, "--set", "search.screen_fraction=0.5", "--set", "search.refine_count=2",
+                 "--set", "search.early_refine_batch=1", "--set", "search.refine_from=start") == 0,
+          "2-rank screened search with refines from the start exits 0")
+    full = {(r["scene"], r["start"]): r for r in runs(a)}
+    rb = runs(b)
+    refines = [r for r in rb if r["stage"] == "refine"]
+    check(len(refines) > 0, f"refines ran ({len(refines)})")
+    for r in refines:
+        f = full[(r["scene"], r["start"])]
+        check((r["status"], repr(r["T_f"]), r["iterations"], r["guess"]) ==
+              (f["status"], repr(f["T_f"]), f["iterations"], f["guess"]),
+              f"{r['scene']} refine {r['start']}: {r['status']} T_f {r['T_f']!r} in {r['iterations']} "
+              f"iterations, its full start's {f['status']} {f['T_f']!r} in {f['iterations']}")
+    # The smoke benchmark's scene limit leaves time to refine every certified screen (the fill).
+    certified = {(r["scene"], r["start"]) for r in rb if r["stage"] == "screen" and r["T_f"] is not None}
+    check(certified <= {(r["scene"], r["start"]) for r in refines}, "every certified screen refined")
+    for scene, sb in best(b)["scenes"].items():
+        points = [r["T_f"] for r in refines if r["scene"] == scene and r["T_f"] is not None]
+        check(sb["T_f"] == (min(points) if points else None), f"{scene}: the best refine is the best")
+    # search.refine_from both: each refine is its refine from the screen (as a search with
+    # refine_from screen makes it) and then its start's full run, the better one kept.
+    s, o = os.path.join(WORK, "refine_from_screen"), os.path.join(WORK, "refine_from_both")
+    screened_sets = ["--set", "search.screen_fraction=0.5", "--set", "search.refine_count=2",
+                     "--set", "search.early_refine_batch=1"]
+    check(search(s, 2, *DET, *screened_sets, "--set", "search.refine_from=screen") == 0,
+          "2-rank screened search with refines from the screen exits 0")
+    check(search(o, 2, *DET, *screened_sets, "--set", "search.refine_from=both") == 0,
+          "2-rank screened search with refines from both exits 0")
+    from_screen = {(r["scene"], r["start"]): r for r in runs(s) if r["stage"] == "refine"}
+    both = [r for r in runs(o) if r["stage"] == "refine"]
+    check(sorted((r["scene"], r["start"]) for r in both) == sorted(from_screen),
+          "the same refines as from the screen")
+    for r in both:
+        x, f = from_screen[(r["scene"], r["start"])], full[(r["scene"], r["start"])]
+        kept = f if f["T_f"] is not None and (x["T_f"] is None or f["T_f"] < x["T_f"]) else x
+        check((r["status"], repr(r["T_f"]), r["iterations"]) ==
+              (kept["status"], repr(kept["T_f"]), x["iterations"] + f["iterations"]),
+              f"{r['scene']} refine {r['start']} from both: T_f {r['T_f']!r} in {r['iterations']} iterations; "
+              f"from the screen {x['T_f']!r} in {x['iterations']}, from the start {f['T_f']!r} in {f['iterations']}")
 elif MODE == "resume":
     clean, out = os.path.join(WORK, "clean"), os.path.join(WORK, "resume")
     check(search(clean, 2, *DET) == 0, "clean 2-rank search exits 0")

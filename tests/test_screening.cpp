@@ -5,6 +5,7 @@
 // between batches of screens, the best only from refines, and --resume across the two stages.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -19,6 +20,7 @@
 #include "core/model/scene_yaml.h"
 #include "core/util/errors.h"
 #include "search/coordinator.h"
+#include "search/run_start.h"
 #include "search/screening.h"
 #include "search/search_plan.h"
 #include "search/task_queue.h"
@@ -98,7 +100,9 @@ TEST(Screening, BadSettingsAreRefusedNamingTheKey) {
   EXPECT_NE(message("search.refine_count=0").find("search.refine_count"), std::string::npos);
   EXPECT_NE(message("search.screen_share=1").find("search.screen_share"), std::string::npos);
   EXPECT_NE(message("search.early_refine_batch=-1").find("search.early_refine_batch"), std::string::npos);
+  EXPECT_NE(message("search.refine_from=guess").find("search.refine_from"), std::string::npos);
   EXPECT_EQ(message("search.screen_fraction=0.5"), "");
+  EXPECT_EQ(message("search.refine_from=start"), "");
   Settings s = Settings::load(default_settings_path());
   EXPECT_FALSE(screen_settings(s).on()) << "the default is today's search";
 }
@@ -125,6 +129,7 @@ json outcome_message(const SearchPlan& plan, const Task& task, double T_f, const
   o.T_f = o.value = T_f;
   o.max_violation = o.max_complementarity = 1e-9;
   o.best_class = {{"key", key}, {"pairs", json::array()}};
+  if (task.stage == Stage::kRefine && !task.guess.is_null()) o.guess = GuessKind::kGiven;  // as a worker reports it
   return {{"outcome", o.to_json()},
           {"solution", {{"T_f", T_f}, {"made_by", to_string(task.stage) + " " + std::to_string(task.start)}}}};
 }
@@ -371,6 +376,85 @@ TEST(ScreenedSearch, UnderATimeLimitTheTimeLeftRefinesTheNextBestScreens) {
   EXPECT_EQ(best["starts_total"], 9) << "5 screens and 4 refines";
   EXPECT_EQ(best["starts_finished"], 9);
   EXPECT_EQ(best["scenes"]["one_robot_axis"]["start"], 0) << "refined T_f 5 + start: a fill refine's is lowest";
+}
+
+// search.refine_from start: a refine carries no guess (the worker runs the start's own), so it
+// needs no screened answer; the choice and the resume are those of refines from the screen (one
+// chosen from a screen cut short runs again after it: the screen's new outcome may change the
+// choice). With "both" the refine carries its screen's answer, as from the screen.
+TEST(ScreenedSearch, RefinesFromTheStartNeedNoScreenedAnswer) {
+  const SearchPlan plan = load_search_plan({config("scenarios/one_robot_axis.yaml")}, 4, 1, {});
+  using Handed = std::vector<std::pair<Stage, int>>;
+  for (const RefineFrom from : {RefineFrom::kStart, RefineFrom::kBoth}) {
+    ScreenSettings settings = screening(2);
+    settings.refine_from = from;
+    const bool start = from == RefineFrom::kStart;
+    const std::string dir = fresh_dir(start ? "from_start" : "from_both");
+    {
+      Coordinator c(plan, dir, 1, 0.0, false, false, {}, settings);
+      const Handed handed = run_all(plan, c, [&](const Task& t, json&) {
+        if (t.stage == Stage::kRefine) {
+          EXPECT_EQ(t.guess.is_null(), start) << "refine " << t.start;
+        } else if (start) {
+          std::filesystem::remove_all(dir + "/screened");  // the refines must not need it
+        }
+      });
+      EXPECT_EQ(handed, (Handed{{Stage::kScreen, 0}, {Stage::kScreen, 1}, {Stage::kScreen, 2},
+                                {Stage::kScreen, 3}, {Stage::kRefine, 2}, {Stage::kRefine, 1}}));
+      c.finish();
+      const json best = json::parse(std::ifstream(dir + "/best.json"));
+      EXPECT_EQ(best["starts_finished"], 6);
+      EXPECT_EQ(best["scenes"]["one_robot_axis"]["start"], 1);
+    }
+  }
+}
+
+// search.refine_from both: the better of the two runs, their costs summed, the history of new
+// bests across both, and cut short if the second was.
+TEST(ScreenedSearch, BothRefinesKeepTheBetterRunAndCountBoth) {
+  StartOutcome a, b;
+  a.status = b.status = StartStatus::kSolved;
+  a.guess = GuessKind::kGiven;
+  b.guess = GuessKind::kDetour;
+  a.value = a.T_f = 5.0;
+  b.value = b.T_f = 4.0;
+  a.seconds = 2.0;
+  b.seconds = 3.0;
+  a.iterations = 100;
+  b.iterations = 250;
+  a.time_to_first_feasible = 0.5;
+  b.time_to_first_feasible = 0.2;
+  a.time_to_best = 1.5;
+  b.time_to_best = 2.5;
+  a.history = {{0.5, 6.0}, {1.5, 5.0}};
+  b.history = {{0.2, 7.0}, {1.0, 4.5}, {2.5, 4.0}};
+  a.stopped = "converged";
+  b.stopped = "stalled";
+  StartOutcome o = better_of(a, b);
+  EXPECT_EQ(o.value, 4.0);
+  EXPECT_EQ(o.seconds, 5.0);
+  EXPECT_EQ(o.iterations, 350);
+  EXPECT_EQ(o.time_to_first_feasible, 0.5);
+  EXPECT_EQ(o.time_to_best, 4.5) << "the second's best, 2.5 s into it, after the first's 2 s";
+  EXPECT_EQ(o.history, (std::vector<std::array<double, 2>>{{0.5, 6.0}, {1.5, 5.0}, {3.0, 4.5}, {4.5, 4.0}}));
+  EXPECT_EQ(o.guess, GuessKind::kGiven) << "a refine that depends on its screen's answer";
+  EXPECT_EQ(o.status, StartStatus::kSolved);
+  EXPECT_NE(o.stopped.find("stalled"), std::string::npos);
+  EXPECT_NE(o.stopped.find("start's kept"), std::string::npos);
+  b.value = b.T_f = 5.0;  // a tie: the first
+  b.status = StartStatus::kTimeLimit;
+  o = better_of(a, b);
+  EXPECT_EQ(o.value, 5.0);
+  EXPECT_EQ(o.time_to_best, 1.5);
+  EXPECT_EQ(o.stopped.rfind("converged", 0), 0u);
+  EXPECT_EQ(o.status, StartStatus::kTimeLimit) << "the second was cut: the refine runs again on --resume";
+  a.value = a.T_f = kNaN;  // the first found nothing: the second's, even if above
+  a.history.clear();
+  a.time_to_first_feasible = -1.0;
+  b.value = b.T_f = 9.0;
+  o = better_of(a, b);
+  EXPECT_EQ(o.value, 9.0);
+  EXPECT_DOUBLE_EQ(o.time_to_first_feasible, 2.2);
 }
 
 TEST(ScreenedSearch, WithoutScreeningEveryTaskIsAFullStart) {
