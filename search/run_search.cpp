@@ -73,7 +73,8 @@ StartOutcome run_task(const Context& c, const Task& t, json* solution, const Inc
     spec = with_guess(spec, guess);
   }
   StartSpec from_screen;
-  if (t.stage == Stage::kRefine && !t.guess.is_null()) {  // from its screened answer
+  const bool screened_answer = t.stage == Stage::kRefine && !t.guess.is_null();
+  if (screened_answer) {  // a refine from its screened answer
     try {
       from_screen = with_guess(spec, trajectory_from_solution(t.guess, scene,
                                                               fmt::format("screened start {}", t.start)));
@@ -108,7 +109,7 @@ StartOutcome run_task(const Context& c, const Task& t, json* solution, const Inc
     return o;
   };
   StartOutcome o;
-  if (t.stage != Stage::kRefine || t.guess.is_null()) {
+  if (!screened_answer) {
     o = run(spec, t.budget, solution);
   } else if (c.screen.refine_from != RefineFrom::kBoth) {
     o = run(from_screen, t.budget, solution);
@@ -118,7 +119,7 @@ StartOutcome run_task(const Context& c, const Task& t, json* solution, const Inc
     const double left = t.budget > 0 ? t.budget - o.seconds : 0.0;
     if (!o.cut_short() && !interrupt_requested() && (t.budget <= 0 || left > 0)) {
       const StartOutcome second = run(spec, left, solution != nullptr ? &second_solution : nullptr);
-      const bool second_kept = second.certified() && (!o.certified() || second.value < o.value);
+      const bool second_kept = keeps_second(o, second);
       o = better_of(o, second);
       if (solution != nullptr) *solution = std::move(second_kept ? second_solution : first_solution);
     } else {

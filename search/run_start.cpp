@@ -156,8 +156,12 @@ StartOutcome StartOutcome::from_json(const json& j) {
   return o;
 }
 
+bool keeps_second(const StartOutcome& first, const StartOutcome& second) {
+  return second.certified() && (!first.certified() || second.value < first.value);
+}
+
 StartOutcome better_of(const StartOutcome& first, const StartOutcome& second) {
-  const bool second_kept = second.certified() && (!first.certified() || second.value < first.value);
+  const bool second_kept = keeps_second(first, second);
   StartOutcome o = second_kept ? second : first;
   const double dt = first.seconds;
   o.seconds = first.seconds + second.seconds;

@@ -112,6 +112,8 @@ struct StartOutcome {
 // Cut short if the second was (it must run again); the first's guess kind (its screen's answer:
 // search/search_record.h treats the outcome as a refine from its screen) and budget.
 StartOutcome better_of(const StartOutcome& first, const StartOutcome& second);
+// Whether better_of keeps the second run's point (its solution file goes with it).
+bool keeps_second(const StartOutcome& first, const StartOutcome& second);
 
 // Runs `start` on `scene` with a time budget (s; 0 = none) set by `budget_source`; `solution`
 // (if not null) receives the solution file of the best point (schema: core/model/solution.h);
