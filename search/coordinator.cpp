@@ -100,7 +100,7 @@ void Coordinator::add_early_refines(int s) {
   std::vector<Screened> ended;
   for (const auto& [k, o] : screens)
     if (is_final(o, job)) ended.push_back(screened_of(k, o, false));
-  for (int k : early_refine_choice(ended, job.starts, screen_.early_batch)) {
+  for (int k : early_refine_choice(ended, job.starts, screen_.early_batch, screen_.tie)) {
     if (!early_[s].insert(k).second) continue;
     refines_[s].insert(k);
     const bool done = record_.done().count({s, k}) > 0;  // refined in an earlier run
@@ -123,7 +123,7 @@ void Coordinator::advance_stages(double now) {
     const std::string& name = plan_.scenes[i].scene.name;
     const std::map<int, StartOutcome> screens = record_.screened(s);
     const std::vector<Screened> screened = ranked_screens(s);
-    std::vector<int> chosen = refine_choice(screened, screen_.refine_count);
+    std::vector<int> chosen = refine_choice(screened, screen_.refine_count, screen_.tie);
     // A resumed run also finishes the refines an earlier run chose under a time limit, from
     // the screens it had then: they are recorded, and one cut short runs again.
     for (int k : record_.ran(s))
@@ -161,7 +161,7 @@ bool Coordinator::add_fill_refine(double now) {
     const int s = static_cast<int>(i);
     if (!queue_.may_fill(s, now) || (best_s >= 0 && refines_[s].size() >= refines_[best_s].size())) continue;
     const std::vector<Screened> screened = ranked_screens(s);
-    for (int k : refine_choice(screened, static_cast<int>(screened.size())))
+    for (int k : refine_choice(screened, static_cast<int>(screened.size()), screen_.tie))
       if (!refines_[s].count(k) && !record_.done().count({s, k})) {
         best_s = s;
         best_k = k;

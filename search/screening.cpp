@@ -28,6 +28,9 @@ ScreenSettings screen_settings(const Settings& s) {
   if (out.early_batch < 0) refuse("search.early_refine_batch", "must be >= 0 (0: no early refines)");
   out.refine_from = choice<RefineFrom>(s, "search.refine_from",
                                        {{"screen", RefineFrom::kScreen}, {"start", RefineFrom::kStart}, {"both", RefineFrom::kBoth}});
+  out.tie = s.number("search.screen_tie");
+  if (!(out.tie >= 0 && out.tie < 1e-2))
+    refuse("search.screen_tie", "must be >= 0 and below 1e-2 (a relative difference; 0: only equal values tie)");
   return out;
 }
 
@@ -36,13 +39,25 @@ int screen_steps(const Scene& scene, double fraction) {
   return std::min(n, scene.steps);
 }
 
-std::vector<int> refine_choice(std::vector<Screened> screened, int count) {
+bool screen_below(double a, double b, double tie) {
+  return b - a > tie * std::max(std::abs(a), std::abs(b));
+}
+
+std::vector<int> refine_choice(std::vector<Screened> screened, int count, double tie) {
   screened.erase(std::remove_if(screened.begin(), screened.end(),
                                 [](const Screened& x) { return !std::isfinite(x.value); }),
                  screened.end());
   std::sort(screened.begin(), screened.end(), [](const Screened& a, const Screened& b) {
     return a.value != b.value ? a.value < b.value : a.start < b.start;
   });
+  // Groups of values within the tie of their lowest, each ranked by start.
+  for (std::size_t first = 0; first < screened.size();) {
+    std::size_t end = first + 1;
+    while (end < screened.size() && !screen_below(screened[first].value, screened[end].value, tie)) ++end;
+    std::sort(screened.begin() + first, screened.begin() + end,
+              [](const Screened& a, const Screened& b) { return a.start < b.start; });
+    first = end;
+  }
   std::vector<int> out;
   std::vector<char> taken(screened.size(), 0);
   std::set<std::string> classes;
@@ -57,7 +72,7 @@ std::vector<int> refine_choice(std::vector<Screened> screened, int count) {
   return out;
 }
 
-std::vector<int> early_refine_choice(const std::vector<Screened>& ended, int starts, int batch) {
+std::vector<int> early_refine_choice(const std::vector<Screened>& ended, int starts, int batch, double tie) {
   std::vector<int> out;
   if (batch <= 0) return out;
   std::map<int, double> value;  // start -> its screen's value (NaN: not certified)
@@ -69,10 +84,10 @@ std::vector<int> early_refine_choice(const std::vector<Screened>& ended, int sta
     for (int k = first; k < end; ++k) {
       const auto it = value.find(k);
       if (it == value.end()) return out;  // not ended yet: no later batch is decided either
-      if (std::isfinite(it->second) && (chosen < 0 || it->second < value[chosen])) chosen = k;
+      if (std::isfinite(it->second) && (chosen < 0 || screen_below(it->second, value[chosen], tie))) chosen = k;
     }
     if (chosen < 0) continue;
-    if (value[chosen] < best) out.push_back(chosen);
+    if (std::isinf(best) || screen_below(value[chosen], best, tie)) out.push_back(chosen);
     best = std::min(best, value[chosen]);
   }
   return out;

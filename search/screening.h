@@ -53,6 +53,7 @@ struct ScreenSettings {
   double share = 0.0;     // under a time limit: the share of it screens may use
   int early_batch = 0;    // search.early_refine_batch: screens per batch (0: no early refines)
   RefineFrom refine_from = RefineFrom::kScreen;  // search.refine_from
+  double tie = 0.0;       // search.screen_tie: screens this close (relative) rank by start
   bool on() const { return fraction > 0.0; }
 };
 // InputError naming the key for a value out of its range.
@@ -68,19 +69,26 @@ struct Screened {
   std::string class_key;  // the homotopy class of its answer (search/homotopy.h), "" if none
 };
 
-// The starts to refine, in the order they should run: the certified screened starts ranked by
-// (value, start); first the best of each homotopy class in that order (a class "" counts as
-// its own each time), then the next best not yet chosen, until `count` are chosen or none is
+// Whether screened value a is below b by more than the relative tie (search.screen_tie):
+// b − a > tie·max(|a|, |b|). Screens within the tie of each other are taken as one local optimum
+// of the coarse model, their order as roundoff: they rank by start index, the order a search
+// without screening runs them in, and not by digits the solver does not resolve.
+bool screen_below(double a, double b, double tie);
+
+// The starts to refine, in the order they should run. The certified screens are ranked by value
+// in groups: a group opens at the lowest value not yet grouped and holds every value v within
+// the tie above it (!screen_below(first, v, tie)); within a group, by start. From that ranking: first the best of each homotopy class (a class "" counts
+// as its own each time), then the next best not yet chosen, until `count` are chosen or none is
 // left.
-std::vector<int> refine_choice(std::vector<Screened> screened, int count);
+std::vector<int> refine_choice(std::vector<Screened> screened, int count, double tie);
 
 // The early refines of a scene of `starts` starts, in the order they are decided, from its
 // screens with a final outcome (`ended`; value NaN: not certified). Batch b holds the screens of
 // starts b·batch .. min((b+1)·batch, starts)−1. Batches are decided in order, each once all of
-// its screens and the earlier batches' have ended: its best certified screen (lowest value, ties
-// to the lower start) is chosen if it is below the best certified screen of every earlier batch
-// (a batch without one chooses nothing). The first batch with a screen not yet ended stops the
+// its screens and the earlier batches' have ended: its best certified screen (scanned by start,
+// a screen replaces the one held only if screen_below it) is chosen if it is screen_below the
+// best certified screen of every earlier batch (a batch without one chooses nothing). The first batch with a screen not yet ended stops the
 // decisions, so the answer depends only on the screens' outcomes, never on when they ended.
-std::vector<int> early_refine_choice(const std::vector<Screened>& ended, int starts, int batch);
+std::vector<int> early_refine_choice(const std::vector<Screened>& ended, int starts, int batch, double tie);
 
 }  // namespace disco

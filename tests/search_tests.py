@@ -78,6 +78,9 @@ MPI = [MPIEXEC, "-np", "2", "--allow-run-as-root", "--oversubscribe"]
 with open(BENCH) as f:
     SCENE_LIMIT = (yaml.safe_load(f) or {}).get("time_limit")
 ENV = dict(os.environ, OMP_NUM_THREADS="1")
+# Screens within this relative difference rank by start (configs/disco.yaml, search.screen_tie).
+with open(os.path.join(os.path.dirname(BENCH), "..", "disco.yaml")) as f:
+    TIE = yaml.safe_load(f)["search"]["screen_tie"]
 
 
 # Runs compared bit for bit (across ranks, with a clean run after a resume) are deterministic:
@@ -136,10 +139,22 @@ def latest(rs):
     return list(last.values())
 
 
+def below(a, b):
+    """search/screening.h's screen_below: a below b by more than the relative tie."""
+    return b - a > TIE * max(abs(a), abs(b))
+
+
 def refine_choice(screens, count):
-    """search/screening.h's refine_choice: the certified screens ranked by (T_f, start), the best
-    of each homotopy class first, then the next best."""
+    """search/screening.h's refine_choice: the certified screens ranked by T_f in groups within
+    the tie of their lowest, by start within a group; the best of each homotopy class first,
+    then the next best."""
     ranked = sorted((r for r in screens if r["T_f"] is not None), key=lambda r: (r["T_f"], r["start"]))
+    group, first = [], None
+    for r in ranked:
+        if first is None or below(first, r["T_f"]):
+            first = r["T_f"]
+        group.append(first)
+    ranked = [r for _, r in sorted(zip(group, ranked), key=lambda x: (x[0], x[1]["start"]))]
     out, classes = [], set()
     for r in ranked:
         key = (r.get("class") or {}).get("key", "")
@@ -152,17 +167,19 @@ def refine_choice(screens, count):
 
 def early_refine_choice(screens, batch):
     """search/screening.h's early_refine_choice on a scene whose screens have all ended: each
-    batch's best certified screen (ties to the lower start) if below every earlier batch's best."""
+    batch's best certified screen (by start, replaced only by one below it) if below every
+    earlier batch's best."""
     by_start = {r["start"]: r["T_f"] for r in screens}
-    out, best_before = [], float("inf")
+    out, best_before = [], None
     for first in range(0, len(by_start), batch) if batch > 0 else []:
-        certified = [(by_start[k], k) for k in range(first, min(first + batch, len(by_start)))
-                     if by_start[k] is not None]
-        if certified:
-            value, k = min(certified)
-            if value < best_before:
-                out.append(k)
-            best_before = min(best_before, value)
+        chosen = None
+        for k in range(first, min(first + batch, len(by_start))):
+            if by_start[k] is not None and (chosen is None or below(by_start[k], by_start[chosen])):
+                chosen = k
+        if chosen is not None:
+            if best_before is None or below(by_start[chosen], best_before):
+                out.append(chosen)
+            best_before = by_start[chosen] if best_before is None else min(best_before, by_start[chosen])
     return out
 
 

@@ -56,11 +56,11 @@ TEST(Screening, RefinesAreTheBestOfEachClassFirstThenTheNextBest) {
       {6, 12.0, ""}};
   // Ranked: 1 (9.0 a), 4 (9.0 a, a tie to the lower start), 2 (9.5 b), 0 (10 a), 5, 6; 3 has
   // no certified point. Classes first: 1 (a), 2 (b), 5 and 6 (no class: each its own).
-  EXPECT_EQ(refine_choice(screened, 2), (std::vector<int>{1, 2}));
-  EXPECT_EQ(refine_choice(screened, 4), (std::vector<int>{1, 2, 5, 6}));
-  EXPECT_EQ(refine_choice(screened, 6), (std::vector<int>{1, 2, 5, 6, 4, 0}));
-  EXPECT_EQ(refine_choice(screened, 10).size(), 6u) << "never an uncertified screen";
-  EXPECT_TRUE(refine_choice({{0, kNaN, ""}}, 3).empty());
+  EXPECT_EQ(refine_choice(screened, 2, 0.0), (std::vector<int>{1, 2}));
+  EXPECT_EQ(refine_choice(screened, 4, 0.0), (std::vector<int>{1, 2, 5, 6}));
+  EXPECT_EQ(refine_choice(screened, 6, 0.0), (std::vector<int>{1, 2, 5, 6, 4, 0}));
+  EXPECT_EQ(refine_choice(screened, 10, 0.0).size(), 6u) << "never an uncertified screen";
+  EXPECT_TRUE(refine_choice({{0, kNaN, ""}}, 3, 0.0).empty());
 }
 
 TEST(Screening, EarlyRefinesAreEachBatchsBestWhenBelowEveryEarlierBatchs) {
@@ -68,20 +68,53 @@ TEST(Screening, EarlyRefinesAreEachBatchsBestWhenBelowEveryEarlierBatchs) {
   // 4.0. {4, 5} a tie at 3.0, to the lower start: 4. {6} alone, 2.0: chosen.
   const std::vector<Screened> ended = {{0, 5.0, ""}, {1, 4.0, ""}, {2, 4.5, ""}, {3, kNaN, ""},
                                        {4, 3.0, ""}, {5, 3.0, ""}, {6, 2.0, ""}};
-  EXPECT_EQ(early_refine_choice(ended, 7, 2), (std::vector<int>{1, 4, 6}));
+  EXPECT_EQ(early_refine_choice(ended, 7, 2, 0.0), (std::vector<int>{1, 4, 6}));
   // The same screens in another order: the same choice.
   std::vector<Screened> shuffled(ended.rbegin(), ended.rend());
-  EXPECT_EQ(early_refine_choice(shuffled, 7, 2), (std::vector<int>{1, 4, 6}));
+  EXPECT_EQ(early_refine_choice(shuffled, 7, 2, 0.0), (std::vector<int>{1, 4, 6}));
   // Screen 3 not ended: batch 1 undecided, so nothing after it either (whatever ended there).
   std::vector<Screened> open = ended;
   open.erase(open.begin() + 3);
-  EXPECT_EQ(early_refine_choice(open, 7, 2), (std::vector<int>{1}));
+  EXPECT_EQ(early_refine_choice(open, 7, 2, 0.0), (std::vector<int>{1}));
   // A batch without a certified screen chooses nothing and moves no bar.
-  EXPECT_EQ(early_refine_choice({{0, kNaN, ""}, {1, kNaN, ""}, {2, 7.0, ""}}, 3, 2), (std::vector<int>{2}));
+  EXPECT_EQ(early_refine_choice({{0, kNaN, ""}, {1, kNaN, ""}, {2, 7.0, ""}}, 3, 2, 0.0), (std::vector<int>{2}));
   // Batches of 1: every screen below all those before it (a running record).
-  EXPECT_EQ(early_refine_choice({{0, 3.0, ""}, {1, 4.0, ""}, {2, 2.0, ""}, {3, 2.0, ""}, {4, 1.0, ""}}, 5, 1),
+  EXPECT_EQ(early_refine_choice({{0, 3.0, ""}, {1, 4.0, ""}, {2, 2.0, ""}, {3, 2.0, ""}, {4, 1.0, ""}}, 5, 1, 0.0),
             (std::vector<int>{0, 2, 4}));
-  EXPECT_TRUE(early_refine_choice(ended, 7, 0).empty()) << "0: no early refines";
+  EXPECT_TRUE(early_refine_choice(ended, 7, 0, 0.0).empty()) << "0: no early refines";
+}
+
+TEST(Screening, ScreensWithinTheTieRankByStart) {
+  // 1e-7 relative: 9.8168565680 and 9.8168565690 (1e-10 apart) are one optimum; 9.81686 is not.
+  const double tie = 1e-7;
+  EXPECT_TRUE(screen_below(9.8168565, 9.81686, tie)) << "3.5e-6 apart";
+  EXPECT_FALSE(screen_below(9.8168565680, 9.8168565690, tie));
+  EXPECT_FALSE(screen_below(9.8168565690, 9.8168565680, tie)) << "never below a higher value";
+  EXPECT_TRUE(screen_below(1.0, 2.0, 0.0));
+  EXPECT_FALSE(screen_below(2.0, 2.0, 0.0));
+  // Ranked: {3, 7, 8} within the tie of 9.7846360739 (by start: 3 before 7 though 7 is lower by
+  // 2e-11), then {1, 5, 6} within the tie of 9.8168565683, then 2 (9.9). Classes first: 3 (a),
+  // 1 (b), 2 (c); then 5, 6, 7, 8 by their groups and starts.
+  const std::vector<Screened> screened = {{1, 9.8168565684, "b"}, {2, 9.9, "c"},           {3, 9.78463607392, "a"},
+                                          {5, 9.8168565683, "b"}, {6, 9.8168565690, "b"}, {7, 9.78463607390, "a"},
+                                          {8, 9.78463607400, "a"}};
+  EXPECT_EQ(refine_choice(screened, 7, tie), (std::vector<int>{3, 1, 2, 7, 8, 5, 6}));
+  // Without the tie, by value to the last digit.
+  EXPECT_EQ(refine_choice(screened, 7, 0.0), (std::vector<int>{7, 5, 2, 3, 8, 1, 6}));
+  // A group is anchored at its lowest value: 1.0, 1.0 + 0.6e-7 and 1.0 + 1.2e-7 are two groups
+  // (the third is more than the tie above the first), whatever the second's distance to the third.
+  EXPECT_EQ(refine_choice({{0, 1.0 + 1.2e-7, ""}, {1, 1.0 + 0.6e-7, ""}, {2, 1.0, ""}}, 3, tie),
+            (std::vector<int>{1, 2, 0}));
+  // Early refines in batches of 1: screen 1 ties with screen 0 (not below it), screen 2 is below.
+  EXPECT_EQ(early_refine_choice({{0, 9.8168565684, ""}, {1, 9.8168565683, ""}, {2, 9.78, ""}}, 3, 1, tie),
+            (std::vector<int>{0, 2}));
+  EXPECT_EQ(early_refine_choice({{0, 9.8168565684, ""}, {1, 9.8168565683, ""}, {2, 9.78, ""}}, 3, 1, 0.0),
+            (std::vector<int>{0, 1, 2}));
+  // In a batch of 3, the lowest start unless another is below it by more than the tie.
+  EXPECT_EQ(early_refine_choice({{0, 9.8168565684, ""}, {1, 9.8168565683, ""}, {2, 9.9, ""}}, 3, 3, tie),
+            (std::vector<int>{0}));
+  EXPECT_EQ(early_refine_choice({{0, 9.8168565684, ""}, {1, 9.8168565683, ""}, {2, 9.9, ""}}, 3, 3, 0.0),
+            (std::vector<int>{1}));
 }
 
 TEST(Screening, BadSettingsAreRefusedNamingTheKey) {
@@ -103,6 +136,9 @@ TEST(Screening, BadSettingsAreRefusedNamingTheKey) {
   EXPECT_NE(message("search.refine_from=guess").find("search.refine_from"), std::string::npos);
   EXPECT_EQ(message("search.screen_fraction=0.5"), "");
   EXPECT_EQ(message("search.refine_from=start"), "");
+  EXPECT_NE(message("search.screen_tie=-1e-9").find("search.screen_tie"), std::string::npos);
+  EXPECT_NE(message("search.screen_tie=0.01").find("search.screen_tie"), std::string::npos);
+  EXPECT_EQ(message("search.screen_tie=0"), "");
   Settings s = Settings::load(default_settings_path());
   EXPECT_FALSE(screen_settings(s).on()) << "the default is today's search";
 }
@@ -179,6 +215,28 @@ TEST(ScreenedSearch, ScreensFirstThenTheChosenRefinesAndTheBestOnlyFromARefine) 
   EXPECT_EQ(stages, (std::map<std::string, int>{{"screen", 4}, {"refine", 2}}));
   for (int k = 0; k < 4; ++k)
     EXPECT_TRUE(std::filesystem::exists(dir + "/screened/one_robot_axis/" + std::to_string(k) + ".json"));
+}
+
+TEST(ScreenedSearch, ScreensTiedToTheSettingsTieAreRefinedInStartOrder) {
+  // Screens 0, 2 and 3 within 1e-9 of each other (one optimum to the solver's accuracy), 1 above.
+  const std::vector<double> screened = {2.0 + 1e-9, 3.0, 2.0, 2.0 + 5e-10};
+  const SearchPlan plan = load_search_plan({config("scenarios/one_robot_axis.yaml")}, 4, 1, {});
+  const auto refines = [&](double tie) {
+    ScreenSettings settings = screening(2);
+    settings.tie = tie;
+    Coordinator c(plan, fresh_dir("tie"), 1, 0.0, false, false, {}, settings);
+    Coordinator::Reply reply = c.on_result(1, "{}");
+    std::vector<int> out;
+    while (reply.kind == MessageKind::kTask) {
+      const Task t = Task::from_json(json::parse(reply.body));
+      if (t.stage == Stage::kRefine) out.push_back(t.start);
+      const double T_f = t.stage == Stage::kScreen ? screened.at(t.start) : refined_T_f(t.start);
+      reply = c.on_result(1, outcome_message(plan, t, T_f, "a").dump());
+    }
+    return out;
+  };
+  EXPECT_EQ(refines(1e-7), (std::vector<int>{0, 2})) << "the tied group by start";
+  EXPECT_EQ(refines(0.0), (std::vector<int>{2, 3})) << "by value to the last digit";
 }
 
 TEST(ScreenedSearch, ARankAskingWhileScreensStillRunWaitsAndGetsItsRefineOrStopLater) {
