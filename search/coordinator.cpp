@@ -71,7 +71,7 @@ Coordinator::Coordinator(const SearchPlan& plan, const std::string& out_dir, std
 }
 
 std::optional<Task> Coordinator::refine_task(int s, int k) const {
-  if (screen_.refine_from == RefineFrom::kStart) {  // its own guess: no screened answer needed
+  if (screen_.refine_from == RefineFrom::kStart || !certified_screen(s, k)) {  // its own guess
     Task t;
     t.scene = s;
     t.start = k;
@@ -133,11 +133,15 @@ void Coordinator::advance_stages(double now) {
                  chosen.end());
     std::vector<Task> tasks;
     std::string words;
+    int in_place = 0;  // starts an earlier run ran unscreened in the time left: no screen of theirs runs
     for (int k : chosen) {
       refines_[s].insert(k);
+      in_place += screens.count(k) == 0;
       const auto it = screens.find(k);
-      words += fmt::format("{}{} ({:.6f})", words.empty() ? "" : ", ", k,
-                           it != screens.end() ? it->second.value : std::nan(""));
+      words += fmt::format("{}{} ({})", words.empty() ? "" : ", ", k,
+                           it == screens.end()            ? std::string("not screened")
+                           : it->second.certified() ? fmt::format("{:.6f}", it->second.value)
+                                                          : std::string("no certified screen"));
       if (record_.done().count({s, k})) continue;  // refined in an earlier run
       if (auto t = refine_task(s, k)) tasks.push_back(std::move(*t));
     }
@@ -145,8 +149,14 @@ void Coordinator::advance_stages(double now) {
                  chosen.empty() ? std::string(early_[s].empty() ? "none (no certified screen)" : "none more")
                                 : words,
                  early_[s].empty() ? std::string() : fmt::format(" ({} early)", early_[s].size()));
-    queue_.add_refines(s, static_cast<int>(chosen.size()), tasks);
+    queue_.add_refines(s, static_cast<int>(chosen.size()) - in_place, tasks);
   }
+}
+
+bool Coordinator::certified_screen(int s, int k) const {
+  const std::map<int, StartOutcome> screens = record_.screened(s);
+  const auto it = screens.find(k);
+  return it != screens.end() && it->second.certified();
 }
 
 std::vector<Screened> Coordinator::ranked_screens(int s) const {
@@ -160,8 +170,7 @@ bool Coordinator::add_fill_refine(double now) {
   for (std::size_t i = 0; i < plan_.scenes.size(); ++i) {
     const int s = static_cast<int>(i);
     if (!queue_.may_fill(s, now) || (best_s >= 0 && refines_[s].size() >= refines_[best_s].size())) continue;
-    const std::vector<Screened> screened = ranked_screens(s);
-    for (int k : refine_choice(screened, static_cast<int>(screened.size()), screen_.tie))
+    for (int k : time_left_order(ranked_screens(s), queue_.start_order(s), screen_.tie))
       if (!refines_[s].count(k) && !record_.done().count({s, k})) {
         best_s = s;
         best_k = k;
@@ -172,9 +181,17 @@ bool Coordinator::add_fill_refine(double now) {
   refines_[best_s].insert(best_k);
   const auto task = refine_task(best_s, best_k);
   if (!task) return add_fill_refine(now);  // its screened answer is missing (warned): the next
-  spdlog::info("{}: time left: refining start {} ({:.6f}), the next best screen", plan_.scenes[best_s].scene.name,
-               best_k, record_.screened(best_s).at(best_k).value);
-  queue_.add_refine(task);
+  const std::map<int, StartOutcome> screens = record_.screened(best_s);
+  const auto screen = screens.find(best_k);
+  const bool unscreened = screen == screens.end();
+  if (unscreened || !screen->second.certified())
+    spdlog::info("{}: time left: running start {} at full N_t from its own guess ({})",
+                 plan_.scenes[best_s].scene.name, best_k,
+                 unscreened ? "not screened" : "its screen has no certified point");
+  else
+    spdlog::info("{}: time left: refining start {} ({:.6f}), the next best screen", plan_.scenes[best_s].scene.name,
+                 best_k, screen->second.value);
+  queue_.add_refine(task, unscreened);
   return true;
 }
 

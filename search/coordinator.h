@@ -28,7 +28,8 @@
 // (search.early_refine_batch) it queues each as soon as early_refine_choice decides it, and the
 // final choice skips the starts refined early. Under a time limit, a rank that would otherwise
 // idle once a scene's chosen refines are handed out gets the scene's next screened start in the
-// same ranking (add_fill_refine): the limit, not refine_count, ends the refines. A rank that asks for
+// same ranking, and once those are refined a start without a certified screen, at full N_t from
+// its own guess (add_fill_refine): the limit, not refine_count, ends the refines. A rank that asks for
 // work while only refines still to come could give it some waits: rank 0's own worker in
 // await_work(), a worker rank by getting no reply until take_outbox() has a task (or kStop)
 // for it.
@@ -125,12 +126,16 @@ class Coordinator {
   // Scene s's early refines decided since the last call, queued (screening only).
   void add_early_refines(int s);
   // The refine of start k of scene s: from its screened solution file (none, with a warning,
-  // if that file cannot be read), or with search.refine_from "start" from its own guess.
+  // if that file cannot be read), or from its own guess with search.refine_from "start" or
+  // when its screen has no certified point (or it was never screened: the time left).
   std::optional<Task> refine_task(int s, int k) const;
+  // Whether start k of scene s has a recorded screen with a certified point.
+  bool certified_screen(int s, int k) const;
   // Under a time limit with nothing else to hand out: queues the next refine of the scene with
   // the fewest refines so far (ties: the lower index) that may take one (TaskQueue::may_fill)
-  // and has a certified screen not yet refined, the next in refine_choice's ranking of all its
-  // screens. False if there is none.
+  // and has a start not yet refined: the next in time_left_order (search/screening.h): its
+  // certified screens in refine_choice's ranking, then its starts without one, from their own
+  // guess. False if there is none.
   bool add_fill_refine(double now);
   // Scene s's recorded screens as the refine choices rank them (with their classes).
   std::vector<Screened> ranked_screens(int s) const;

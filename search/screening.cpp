@@ -72,6 +72,19 @@ std::vector<int> refine_choice(std::vector<Screened> screened, int count, double
   return out;
 }
 
+std::vector<int> time_left_order(const std::vector<Screened>& screened, const std::vector<int>& hand_out_order,
+                                 double tie) {
+  std::vector<int> out = refine_choice(screened, static_cast<int>(screened.size()), tie);
+  std::map<int, bool> certified;  // start -> whether its screen has a certified point
+  for (const Screened& x : screened) certified[x.start] = std::isfinite(x.value);
+  for (const bool with_screen : {false, true})
+    for (int k : hand_out_order) {
+      const auto it = certified.find(k);
+      if ((it != certified.end()) == with_screen && (it == certified.end() || !it->second)) out.push_back(k);
+    }
+  return out;
+}
+
 std::vector<int> early_refine_choice(const std::vector<Screened>& ended, int starts, int batch, double tie) {
   std::vector<int> out;
   if (batch <= 0) return out;

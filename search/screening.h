@@ -17,7 +17,9 @@
 //   fill     under a time limit (the search's or the scene's own), the limit and not
 //            refine_count ends the refines: once the chosen ones are handed out, a rank that
 //            would idle refines the next screen of refine_choice's ranking of all the
-//            scene's screens (search/coordinator.h, add_fill_refine).
+//            scene's screens, and once those are refined, runs the starts without a certified
+//            screen (never screened, or not certified) at full N_t from their own guess, in
+//            the queue's order (time_left_order; search/coordinator.h, add_fill_refine).
 //   early    with search.early_refine_batch B > 0, refines also start while the scene is
 //            still screening (early_refine_choice): after every batch of B screens (starts
 //            0..B−1, B..2B−1, ...) has ended, the batch's best screen is refined at once if
@@ -81,6 +83,15 @@ bool screen_below(double a, double b, double tie);
 // as its own each time), then the next best not yet chosen, until `count` are chosen or none is
 // left.
 std::vector<int> refine_choice(std::vector<Screened> screened, int count, double tie);
+
+// The order in which the time left of a limit runs a scene's starts once its chosen refines are
+// handed out (search/README.md, "Screening", step 5): first refine_choice's ranking of every
+// certified screen in `screened`; then the starts without a certified screen, which run at full
+// N_t from their own guess as a search without screening runs them: those never screened (no
+// entry in `screened`) before those whose screen ended without a certified point, each group in
+// `hand_out_order` (the queue's order of the scene's starts, search/task_queue.h).
+std::vector<int> time_left_order(const std::vector<Screened>& screened, const std::vector<int>& hand_out_order,
+                                 double tie);
 
 // The early refines of a scene of `starts` starts, in the order they are decided, from its
 // screens with a final outcome (`ended`; value NaN: not certified). Batch b holds the screens of

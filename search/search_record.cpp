@@ -33,7 +33,7 @@ bool SearchRecord::final_outcome(int s, const StartOutcome& o) const {
 void SearchRecord::note_refine(int s, const StartOutcome& o) {
   if (o.stage != Stage::kRefine) return;
   const auto screen = screens_.find({s, o.start});
-  if (screen != screens_.end() && !is_final(screen->second, plan_.scenes[s]))
+  if (screen == screens_.end() || !is_final(screen->second, plan_.scenes[s]))
     stale_refines_.insert({s, o.start});
   else
     stale_refines_.erase({s, o.start});

@@ -136,13 +136,14 @@ class SearchRecord {
   std::map<std::pair<int, int>, StartOutcome> outcomes_;  // (scene, start): its latest outcome
   std::map<std::pair<int, int>, StartOutcome> screens_;   // the same for screens
   std::set<std::pair<int, int>> done_, screened_done_;
-  // Refines that ran from the answer of a screen cut short (a time limit): not final, since
-  // --resume runs that screen again and then the refine from its new answer, as a search
-  // without the cut does (search/README.md, "Screening").
+  // Refines that ran from the answer of a screen cut short (a time limit), or without a screen
+  // (a start the screening share left unscreened, run in the time left): not final, since
+  // --resume runs that screen and then the refine from its answer, as a search without the cut
+  // does (search/README.md, "Screening").
   std::set<std::pair<int, int>> stale_refines_;
   // is_final, and for a refine: not stale.
   bool final_outcome(int s, const StartOutcome& o) const;
-  // Notes whether refine `o` of scene s ran from a final screen (stale_refines_).
+  // Notes whether refine `o` of scene s ran after a final screen (stale_refines_).
   void note_refine(int s, const StartOutcome& o);
   std::vector<std::string> recovered_;  // lines read_earlier took from best/SCENE.json
   int finished_ = 0, resumed_ = 0, cut_short_ = 0, interrupted_ = 0;

@@ -45,7 +45,7 @@ TaskQueue::TaskQueue(const SearchPlan& plan, double time_limit,
                      const std::set<std::pair<int, int>>& done,
                      const GuessClassFunction& guess_class, const ScreenSettings& screen,
                      const std::set<std::pair<int, int>>& screened)
-    : plan_(plan), time_limit_(time_limit), screen_(screen), scenes_(plan.scenes.size()) {
+    : plan_(plan), time_limit_(time_limit), screen_(screen), scenes_(plan.scenes.size()), order_(plan.scenes.size()) {
   std::vector<int> order(plan.scenes.size());
   for (std::size_t s = 0; s < order.size(); ++s) order[s] = static_cast<int>(s);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
@@ -59,6 +59,7 @@ TaskQueue::TaskQueue(const SearchPlan& plan, double time_limit,
       (c.empty() || classes.insert(c).second ? first : seen).push_back(k);
     }
     first.insert(first.end(), seen.begin(), seen.end());
+    order_[s] = first;
     for (int k : first) {
       if (done.count({s, k}) || (screen_.on() && screened.count({s, k}))) continue;
       Task t;
@@ -111,8 +112,17 @@ void TaskQueue::add_early_refine(int s, const std::optional<Task>& task) {
   if (!scenes_[s].refined) add_refine(task);
 }
 
-void TaskQueue::add_refine(const std::optional<Task>& task) {
-  ++total_;
+void TaskQueue::add_refine(const std::optional<Task>& task, bool in_place_of_screen) {
+  if (in_place_of_screen && task) {  // its screen, if still pending, is not handed out any more
+    const auto screen = std::find_if(pending_.begin() + static_cast<std::ptrdiff_t>(next_), pending_.end(),
+                                     [&](const Task& t) {
+                                       return t.stage == Stage::kScreen && t.scene == task->scene &&
+                                              t.start == task->start;
+                                     });
+    if (screen != pending_.end()) pending_.erase(screen);
+  } else {
+    ++total_;
+  }
   if (task) pending_.insert(pending_.begin() + refines_end(), *task);
 }
 

@@ -17,7 +17,9 @@
 // a time while it screens. Refines run in the order they were added. Under a time limit, screens are handed out only until the
 // screening share of it (search.screen_share) is used, and their budgets end there; once a
 // scene's chosen refines are handed out, the time left goes to more of its refines
-// (add_refine), which the coordinator adds one at a time when a rank would otherwise idle.
+// (add_refine), which the coordinator adds one at a time when a rank would otherwise idle: the
+// next best screens, then the starts without a certified screen (search/screening.h,
+// time_left_order, in start_order).
 //
 // Not thread-safe: search/coordinator.h guards it.
 #pragma once
@@ -81,7 +83,8 @@ class TaskQueue {
   // Whether scene s's refines have been added (always false without screening).
   bool refined(int s) const { return scenes_[s].refined; }
   // Scene s's refines, to run next, in this order; `chosen` counts the refines of the choice
-  // (those `tasks` leaves out ended in an earlier run). Fixes the scene's count in total().
+  // (those `tasks` leaves out ended in an earlier run), but not those of starts never screened
+  // (run in their screen's place, see add_refine). Fixes the scene's count in total().
   void add_refines(int s, int chosen, const std::vector<Task>& tasks);
   // One early refine of scene s (search/screening.h), to run next; counted in total() whether
   // it runs or not (none: it ended in an earlier run, or its screen's answer is missing).
@@ -92,12 +95,17 @@ class TaskQueue {
   bool may_fill(int s, double now) const;
   // One refine more (early or beyond the choice), to run after the refines pending; counted in
   // total() whether it runs or not (none: it ended in an earlier run, or its screen's answer is
-  // missing).
-  void add_refine(const std::optional<Task>& task);
+  // missing). `in_place_of_screen`: the start was never screened and runs at full N_t in the
+  // time left instead: it takes its screen's place in total(), and its screen, if pending, is
+  // dropped.
+  void add_refine(const std::optional<Task>& task, bool in_place_of_screen = false);
   // Whether refines may still be added: a scene with screening whose refines are not, and
   // whose time limit (and the search's) has not passed. A rank then waits for work.
   bool refines_to_come(double now) const;
   bool screening() const { return screen_.on(); }
+  // Scene s's starts in the order the queue hands them out (guess classes deferred as above;
+  // every start, also those an earlier run ended).
+  const std::vector<int>& start_order(int s) const { return order_[s]; }
   // At the end: tasks left undone mean a time limit stopped the search (as a start it cut does).
   void finish();
 
@@ -141,6 +149,7 @@ class TaskQueue {
   int total_ = 0;
   bool time_limited_ = false;
   std::vector<SceneState> scenes_;
+  std::vector<std::vector<int>> order_;  // per scene: its starts in hand-out order
   std::map<std::pair<int, int>, Running> running_;
 };
 

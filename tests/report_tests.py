@@ -647,6 +647,25 @@ def plots():
     stars = [l for l in fig.axes[0].lines if l.get_marker() == "*"]
     check(len(stars) == 1 and stars[0].get_ydata()[0] == scene["T_f"], "spread: the best is the star")
 
+    # The screening plot, on made-up lines of a screened search under a limit: screens ranked by
+    # T_f (hollow), refines joined to their screen, and the starts without a certified screen
+    # that the time left ran from their own guess (2: its screen found nothing; 3: never
+    # screened) after them, by start, as squares; the best (start 3) a star.
+    def made_up(start, stage, T_f, status="solved"):
+        return {"scene": "s", "start": start, "stage": stage, "status": status, "T_f": T_f,
+                "value": T_f, "guess": "straight", "seed": 1}
+    made = [made_up(0, "screen", 3.0), made_up(1, "screen", 2.0), made_up(2, "screen", None, "infeasible"),
+            made_up(1, "refine", 2.5), made_up(0, "refine", 2.8), made_up(3, "refine", 2.3),
+            made_up(2, "refine", 2.4)]
+    fig = search_plots.plot_screening(made, {"name": "s", "start": 3, "T_f": 2.3, "value": 2.3}, None)
+    ax = fig.axes[0]
+    points = sorted((float(l.get_xdata()[0]), float(l.get_ydata()[0]), l.get_marker(), l.get_markerfacecolor() == "none")
+                    for l in ax.lines if len(l.get_xdata()) == 1 and l.get_linestyle() == "None")
+    check(points == [(0.0, 2.0, "o", True), (0.0, 2.5, "o", False), (1.0, 2.8, "o", False), (1.0, 3.0, "o", True),
+                     (2.0, 2.4, "s", False), (3.0, 2.3, "*", False)],
+          f"screening: screens by T_f, refines over them, starts without a certified screen after them ({points})")
+    check([t.get_text() for t in ax.get_xticklabels()] == ["1", "0", "2", "3"], "screening: the ticks name the starts")
+
 
 if MODE == "build":
     build()

@@ -192,7 +192,8 @@ def check_consistent(out, label, timing=False, limited=False):
         key = (r["scene"], r["start"])
         if r.get("stage") == "screen":
             screen_status[key] = r["status"]
-        stale = r.get("stage") == "refine" and screen_status.get(key) in CUT
+        # So is a start run in the time left without a screen: --resume screens it, then refines.
+        stale = r.get("stage") == "refine" and (screen_status.get(key) in CUT or key not in screen_status)
         if r["status"] not in CUT and not stale:
             final.append((r["scene"], r["start"], r.get("stage", "full")))
     check(len(final) == len(set(final)), f"{label}: every start ended once ({len(final)} final lines)")
@@ -210,8 +211,9 @@ def check_consistent(out, label, timing=False, limited=False):
             refined = {r["start"] for r in rs if r["scene"] == scene and r["stage"] == "refine"}
             chosen = refine_choice(screens, 2) + early_refine_choice(screens, EARLY_BATCH)
             # Under the scene's own time limit the time left refines the rest of the ranking
-            # (search/README.md, "Screening"): every certified screen, that limit being far away.
-            expected = set(refine_choice(screens, len(screens)) if SCENE_LIMIT else chosen)
+            # and then runs the starts without a certified screen from their own guess
+            # (search/README.md, "Screening"): every start, that limit being far away.
+            expected = {r["start"] for r in screens} if SCENE_LIMIT else set(chosen)
             # A time limit may have made an earlier run refine others too (from fewer screens).
             check(set(chosen) <= refined and (limited or refined == expected),
                   f"{label}: {scene}: refined {sorted(refined)}, expected {sorted(expected)} (the choice {chosen})")
@@ -317,9 +319,10 @@ elif MODE == "refinefrom":
               (f["status"], repr(f["T_f"]), f["iterations"], f["guess"]),
               f"{r['scene']} refine {r['start']}: {r['status']} T_f {r['T_f']!r} in {r['iterations']} "
               f"iterations, its full start's {f['status']} {f['T_f']!r} in {f['iterations']}")
-    # The smoke benchmark's scene limit leaves time to refine every certified screen (the fill).
-    certified = {(r["scene"], r["start"]) for r in rb if r["stage"] == "screen" and r["T_f"] is not None}
-    check(certified <= {(r["scene"], r["start"]) for r in refines}, "every certified screen refined")
+    # The smoke benchmark's scene limit leaves time to refine every certified screen and to run
+    # every other start from its own guess (the fill).
+    screened_keys = {(r["scene"], r["start"]) for r in rb if r["stage"] == "screen"}
+    check(screened_keys == {(r["scene"], r["start"]) for r in refines}, "every start refined or run in the time left")
     for scene, sb in best(b)["scenes"].items():
         points = [r["T_f"] for r in refines if r["scene"] == scene and r["T_f"] is not None]
         check(sb["T_f"] == (min(points) if points else None), f"{scene}: the best refine is the best")
@@ -336,8 +339,13 @@ elif MODE == "refinefrom":
     both = [r for r in runs(o) if r["stage"] == "refine"]
     check(sorted((r["scene"], r["start"]) for r in both) == sorted(from_screen),
           "the same refines as from the screen")
+    uncertified = {(r["scene"], r["start"]) for r in runs(o) if r["stage"] == "screen" and r["T_f"] is None}
     for r in both:
         x, f = from_screen[(r["scene"], r["start"])], full[(r["scene"], r["start"])]
+        if (r["scene"], r["start"]) in uncertified:  # the time left runs it from its own guess only
+            check((r["status"], repr(r["T_f"]), r["iterations"]) == (f["status"], repr(f["T_f"]), f["iterations"]),
+                  f"{r['scene']} start {r['start']} without a certified screen: its full start's run")
+            continue
         kept = f if f["T_f"] is not None and (x["T_f"] is None or f["T_f"] < x["T_f"]) else x
         check((r["status"], repr(r["T_f"]), r["iterations"]) ==
               (kept["status"], repr(kept["T_f"]), x["iterations"] + f["iterations"]),
@@ -404,6 +412,35 @@ elif MODE == "timelimit" and SCREENED:
     for scene, v in best(out)["scenes"].items():
         c = best(clean)["scenes"][scene]["T_f"]
         check(v["T_f"] is not None and (c is None or v["T_f"] <= c), f"resumed: {scene}'s best at most the clean run's")
+    # A screening share that ends after the first screen: its early refine, then the time left
+    # runs the starts left unscreened at full N_t from their own guess (search/README.md,
+    # "Screening", step 5); none of those runs is final, and --resume without the limit screens
+    # and refines them, keeping every run of the clean run.
+    tight = os.path.join(WORK, "tight_share")
+    first = min((x for x in order if x["stage"] == "screen"), key=lambda x: x["finished_s"])
+    tight_limit = 2 * end
+    share = (first["finished_s"] + TICK / 2) / tight_limit
+    shutil.rmtree(tight, ignore_errors=True)
+    r = subprocess.run([DISCO, "search", BENCH, "--seed", "7", "--out", tight, "--time-limit", repr(tight_limit),
+                        *RUN, "--set", f"search.screen_share={share!r}"], env=ENV, capture_output=True, text=True)
+    check(r.returncode in (0, 3), f"screened search with a tight share exits 0 or 3 (got {r.returncode})")
+    rs = runs(tight)
+    screened_keys = {(x["scene"], x["start"]) for x in rs if x["stage"] == "screen"}
+    unscreened = [x for x in rs if x["stage"] == "refine" and (x["scene"], x["start"]) not in screened_keys]
+    check(all(x["finished_s"] - x["seconds"] < share * tight_limit for x in rs if x["stage"] == "screen") and
+          0 < len(screened_keys) < len(order_keys := {(x["scene"], x["start"]) for x in order}),
+          f"screens handed out before the share's end only: {sorted(screened_keys)} of {len(order_keys)} starts")
+    check(len(unscreened) >= 2 and all(x["guess"] != "given" for x in unscreened),
+          f"the time left ran {len(unscreened)} unscreened start(s) from their own guess")
+    check("from its own guess (not screened)" in r.stderr + r.stdout, "the log says so")
+    b = best(tight)
+    check(b["starts_finished"] < b["starts_total"], "runs without their screen are not final")
+    code = subprocess.run([DISCO, "search", BENCH, "--seed", "7", "--out", tight, "--resume", *RUN,
+                           "--set", f"search.screen_share={share!r}"], env=ENV).returncode
+    check(code == 0, "--resume of the tight share without the limit exits 0")
+    check_consistent(tight, "tight share resumed", limited=True)
+    check(set(key_set(runs(clean))) <= set(key_set(latest(runs(tight)))),
+          "tight share resumed: every run of the clean run, bit for bit")
 elif MODE == "timelimit":
     # On the simulated clock (configs/disco.yaml `clock:`, core/util/clock.h), one rank: the
     # search's time is its Ipopt iterations, so where a limit falls is a fact of the runs, the

@@ -5,7 +5,9 @@
 // between batches of screens, the best only from refines, and --resume across the two stages.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +16,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "core/config/settings.h"
@@ -115,6 +118,22 @@ TEST(Screening, ScreensWithinTheTieRankByStart) {
             (std::vector<int>{0}));
   EXPECT_EQ(early_refine_choice({{0, 9.8168565684, ""}, {1, 9.8168565683, ""}, {2, 9.9, ""}}, 3, 3, 0.0),
             (std::vector<int>{1}));
+}
+
+TEST(Screening, TheTimeLeftRunsTheRankingThenTheStartsWithoutACertifiedScreen) {
+  // Certified: 1 (9.0 a), 4 (8.0 a), 2 (9.5 b); 3 and 6 screened without a certified point; 0
+  // and 5 never screened. Hand-out order 0, 2, 4, 6, 1, 3, 5 (e.g. guess classes deferred).
+  const std::vector<Screened> screened = {{1, 9.0, "a"}, {4, 8.0, "a"}, {2, 9.5, "b"},
+                                          {3, kNaN, ""}, {6, kNaN, "c"}};
+  const std::vector<int> order = {0, 2, 4, 6, 1, 3, 5};
+  // refine_choice's ranking (4 a, 2 b, 1), then the unscreened 0, 5 and the uncertified 6, 3 in
+  // the hand-out order.
+  EXPECT_EQ(time_left_order(screened, order, 0.0), (std::vector<int>{4, 2, 1, 0, 5, 6, 3}));
+  EXPECT_EQ(time_left_order({}, {2, 0, 1}, 0.0), (std::vector<int>{2, 0, 1})) << "nothing screened";
+  // Every start once, whatever its screen.
+  std::vector<int> all = time_left_order(screened, order, 0.0);
+  std::sort(all.begin(), all.end());
+  EXPECT_EQ(all, (std::vector<int>{0, 1, 2, 3, 4, 5, 6}));
 }
 
 TEST(Screening, BadSettingsAreRefusedNamingTheKey) {
@@ -389,8 +408,9 @@ TEST(ScreenedSearch, EarlyRefinesRunBetweenBatchesOfScreensAndNothingTwiceAfterA
 
 // Under a time limit the chosen refines do not end the search: while time is left, a rank that
 // would idle refines the next screen of the same ranking (the best of each class first, then by
-// screened T_f), never an uncertified screen nor one refined already, until none is left. The
-// limit here is far beyond the made-up outcomes' milliseconds, so no verdict depends on speed.
+// screened T_f), never one refined already, until none is left; then the starts whose screen has
+// no certified point run at full N_t from their own guess. The limit here is far beyond the
+// made-up outcomes' milliseconds, so no verdict depends on speed.
 TEST(ScreenedSearch, UnderATimeLimitTheTimeLeftRefinesTheNextBestScreens) {
   const SearchPlan plan = load_search_plan({config("scenarios/one_robot_axis.yaml")}, 5, 1, {});
   using Handed = std::vector<std::pair<Stage, int>>;
@@ -407,6 +427,9 @@ TEST(ScreenedSearch, UnderATimeLimitTheTimeLeftRefinesTheNextBestScreens) {
     while (const auto t = c.next(0)) {
       handed.push_back({t->stage, t->start});
       if (handed.size() > 20) break;  // a start refined again and again would never end
+      if (t->stage == Stage::kRefine) {
+        EXPECT_EQ(t->guess.is_null(), t->start == 4) << "from the screen, but 4 from its own guess";
+      }
       const double T_f = t->stage == Stage::kScreen ? screened(t->start) : refined_T_f(t->start);
       json m = outcome_message(plan, *t, T_f, class_of(t->start));
       uncertified_4(*t, m);
@@ -425,15 +448,73 @@ TEST(ScreenedSearch, UnderATimeLimitTheTimeLeftRefinesTheNextBestScreens) {
   }
   const std::string dir = fresh_dir("fill");
   Coordinator c(plan, dir, 1, /*time limit, s*/ 3600.0, false, false, {}, screening(1));
-  Handed expected = screens;  // the choice (2), then class b's best (1), then 3 and 0 by T_f
-  expected.insert(expected.end(), {{Stage::kRefine, 2}, {Stage::kRefine, 1}, {Stage::kRefine, 3}, {Stage::kRefine, 0}});
+  Handed expected = screens;  // the choice (2), then class b's best (1), then 3 and 0 by T_f,
+                              // then 4 (no certified screen) from its own guess
+  expected.insert(expected.end(), {{Stage::kRefine, 2}, {Stage::kRefine, 1}, {Stage::kRefine, 3}, {Stage::kRefine, 0},
+                                   {Stage::kRefine, 4}});
   EXPECT_EQ(run(c), expected);
-  EXPECT_FALSE(c.await_work()) << "every certified screen is refined: nothing is left to come";
+  EXPECT_FALSE(c.await_work()) << "every start is refined: nothing is left to come";
   c.finish();
   const json best = json::parse(std::ifstream(dir + "/best.json"));
-  EXPECT_EQ(best["starts_total"], 9) << "5 screens and 4 refines";
-  EXPECT_EQ(best["starts_finished"], 9);
+  EXPECT_EQ(best["starts_total"], 10) << "5 screens and 5 refines";
+  EXPECT_EQ(best["starts_finished"], 10);
   EXPECT_EQ(best["scenes"]["one_robot_axis"]["start"], 0) << "refined T_f 5 + start: a fill refine's is lowest";
+}
+
+// Starts the screening share left unscreened are not lost: once a scene's certified screens are
+// refined, the time left runs them at full N_t from their own guess, in the queue's order (here
+// guess classes deferred: 0, 2, 1), each in its screen's place in the count. Like a refine of a
+// screen cut short, such a run is not final: --resume screens the start and then refines it, so
+// the resumed search holds every run of a search that was never cut. A share of 1e-9 of 3600 s
+// (3.6 µs, less than the 1 ms slept before the first hand-out) lets no screen out, so no verdict
+// depends on speed.
+TEST(ScreenedSearch, StartsNeverScreenedRunFromTheirOwnGuessInTheTimeLeft) {
+  const SearchPlan plan = load_search_plan({config("scenarios/one_robot_axis.yaml")}, 3, 1, {});
+  ScreenSettings settings = screening(2);
+  settings.share = 1e-9;
+  const GuessClassFunction guess_class = [](int, int k) { return k < 2 ? std::string("a") : std::string("b"); };
+  const std::string dir = fresh_dir("fill_unscreened");
+  using Handed = std::vector<std::pair<Stage, int>>;
+  auto run = [&](Coordinator& c, bool limited) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    Handed handed;
+    while (const auto t = c.next(0)) {
+      handed.push_back({t->stage, t->start});
+      if (handed.size() > 10) break;
+      EXPECT_EQ(t->guess.is_null(), limited || t->stage == Stage::kScreen) << "start " << t->start;
+      const double T_f = t->stage == Stage::kScreen ? screened_T_f(t->start) : refined_T_f(t->start);
+      const json m = outcome_message(plan, *t, T_f, class_of(t->start));
+      c.record(StartOutcome::from_json(m["outcome"]), &m["solution"]);
+    }
+    EXPECT_FALSE(c.await_work());
+    c.finish();
+    return handed;
+  };
+  {
+    Coordinator c(plan, dir, 1, /*time limit, s*/ 3600.0, false, false, guess_class, settings);
+    EXPECT_EQ(run(c, true), (Handed{{Stage::kRefine, 0}, {Stage::kRefine, 2}, {Stage::kRefine, 1}}));
+    const json best = json::parse(std::ifstream(dir + "/best.json"));
+    EXPECT_EQ(best["scenes"]["one_robot_axis"]["start"], 0);
+    EXPECT_EQ(best["scenes"]["one_robot_axis"]["T_f"], refined_T_f(0));
+    EXPECT_EQ(best["starts_total"], 3) << "each run in its screen's place";
+    EXPECT_EQ(best["starts_finished"], 0) << "none is final without its screen";
+  }
+  {  // Resumed under the limit again: no screen again, so each runs again in its screen's place
+     // (the starts an earlier run chose, in start order).
+    Coordinator c(plan, dir, 1, 3600.0, true, false, guess_class, settings);
+    EXPECT_EQ(run(c, true), (Handed{{Stage::kRefine, 0}, {Stage::kRefine, 1}, {Stage::kRefine, 2}}));
+    const json best = json::parse(std::ifstream(dir + "/best.json"));
+    EXPECT_EQ(best["starts_total"], 3);
+    EXPECT_EQ(best["starts_finished"], 0);
+  }
+  // Without the limit: every screen (in the queue's order), the choice (2 of class a, 1 of class
+  // b) and start 0, which the earlier runs ran.
+  Coordinator again(plan, dir, 1, 0.0, true, false, guess_class, settings);
+  EXPECT_EQ(run(again, false), (Handed{{Stage::kScreen, 0}, {Stage::kScreen, 2}, {Stage::kScreen, 1},
+                                       {Stage::kRefine, 2}, {Stage::kRefine, 1}, {Stage::kRefine, 0}}));
+  const json best = json::parse(std::ifstream(dir + "/best.json"));
+  EXPECT_EQ(best["starts_total"], 6);
+  EXPECT_EQ(best["starts_finished"], 6);
 }
 
 // search.refine_from start: a refine carries no guess (the worker runs the start's own), so it

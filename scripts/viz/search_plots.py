@@ -194,7 +194,8 @@ def screen_runs(runs):
 def plot_screening(runs, scene, out):
     """Screened against refined: every screened start, ranked by its screened J (hollow: at
     the screen's steps), and for the refined ones the J they reached at full N_t (filled,
-    joined to their screen); the best start is a star."""
+    joined to their screen); then the starts run at full N_t without a certified screen (the
+    time left of a limit: squares, by start); the best start is a star."""
     fig, ax = plt.subplots(figsize=(SIZE[0] / DPI, SIZE[1] / DPI), dpi=DPI, layout="constrained")
     screens, rest = screen_runs(runs)
     refined = {r["start"]: r for r in rest if r.get("stage") == "refine"}
@@ -212,11 +213,23 @@ def plot_screening(runs, scene, out):
             ax.plot([x], [value_of(f)], ls="none", marker="*" if best else "o",
                     ms=14 if best else 7, mfc="gold" if best else c, mec="black" if best else c,
                     zorder=4)
-    ax.set_xticks(range(len(order)), [str(r["start"]) for r in order], fontsize=8)
+    # Starts without a certified screen that the time left of a limit ran from their own guess
+    # (search/README.md, "Screening", step 5): after the ranked screens, by start.
+    shown = {r["start"] for r in order}
+    unscreened = sorted((f for k, f in refined.items() if k not in shown and value_of(f) is not None),
+                        key=lambda f: f["start"])
+    for x, f in enumerate(unscreened, start=len(order)):
+        best = f["start"] == scene.get("start")
+        ax.plot([x], [value_of(f)], ls="none", marker="*" if best else "s", ms=14 if best else 6,
+                mfc="gold" if best else "0.3", mec="black" if best else "0.3", zorder=4)
+    ax.set_xticks(range(len(order) + len(unscreened)), [str(r["start"]) for r in order + unscreened], fontsize=8)
     _reference_line(ax, scene)
     handles = [Line2D([], [], ls="none", marker="o", mfc="none", mec="0.3", label="screened"),
                Line2D([], [], ls="none", marker="o", color="0.3", label="refined (full N_t)"),
                Line2D([], [], ls="none", marker="*", ms=12, mfc="gold", mec="black", label="best start")]
+    if unscreened:
+        handles.append(Line2D([], [], ls="none", marker="s", ms=6, color="0.3",
+                              label="no certified screen: run from its own guess"))
     handles += [Line2D([], [], color=colors[k], lw=1.5, label=k) for k in kinds]
     handles += [h for h in ax.get_legend_handles_labels()[0] if h.get_label().startswith(
         ("lower", "reference"))]
