@@ -305,8 +305,9 @@ int run_search(const SearchOptions& o, Transport& transport) {
     return 128 + (signal > 0 ? signal : SIGINT);
   }
   if (const auto k = coordinator.kept(); k.cut > 0)
-    spdlog::info("time limit: {} start(s) cut short (recorded with their best so far); --resume "
-                 "runs them again", k.cut);
+    spdlog::info("time limit: {} run(s) not final (cut short, or a refine whose screen the limit cut "
+                 "short or left out; recorded with their best so far); --resume runs them again",
+                 k.cut);
   spdlog::info("wrote {}/runs.jsonl, {}/best.json; an HTML report: scripts/report {}", o.out,
                o.out, o.out);
   return coordinator.all_solved() ? 0 : 3;
