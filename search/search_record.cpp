@@ -242,7 +242,7 @@ void SearchRecord::read_earlier(const std::string& path, std::uint64_t seed) {
   if (bad > 0) spdlog::warn("{}: skipped {} unreadable line(s)", path, bad);
   resumed_ = static_cast<int>(done_.size() + screened_done_.size());
   spdlog::info("resume: {} start(s) already in {}{}", resumed_, path,
-               again > 0 ? fmt::format("; {} cut short there run again", again) : "");
+               again > 0 ? fmt::format("; {} not final there (cut short, or refines of screens cut or left out) run again", again) : "");
 }
 
 // A best/SCENE.json is written before its start's line (record()), so a kill between the two
