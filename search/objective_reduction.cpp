@@ -38,6 +38,7 @@ struct StepRequest {
   bool minimize = false;    // a minimisation (step 3): ElasticSettings::Stall applies
   double zeta = 0.0;        // > 0: ElasticRequest::zeta
   double zeta_limit = 0.0;  // > 0: ElasticRequest::zeta_limit
+  bool relaxation = false;  // ElasticRequest::relaxation (a weak minimisation's homotopy)
   // A feasibility phase whose certified point is perturbed next (step 1b): polished as always,
   // since the perturbation starts from it (objective_reduction.h, "Polish").
   bool perturbed_next = false;
@@ -98,6 +99,7 @@ struct Reduction {
     req.cold_start = q.minimize && cfg.cold_minimize;  // (objective_reduction.h, "Minimisations")
     req.zeta = q.zeta;
     req.zeta_limit = q.zeta_limit;
+    req.relaxation = q.relaxation;
     MpccResult r = solver.solve(problem.program(), from, req);
     note_deadline(req, r);
     return r;
@@ -162,7 +164,7 @@ struct Reduction {
       // Weak first (objective_reduction.h, "Minimisations"); not certified, as before, unless
       // a limit ended it (the clock, an interrupt, the early minimisation's cap).
       weak = step({Bound::kUpper, bound, iteration_limit, true, cfg.minimize_zeta,
-                   zeta * solver.settings().zeta_factor},
+                   zeta * solver.settings().zeta_factor, cfg.weak_homotopy},
                   out.best);
       const bool limited =
           time_up || interrupt_requested() || weak->outcome == NlpOutcome::kIterationCap;

@@ -28,6 +28,7 @@
 #include "core/elastic/elastic_solver.h"
 #include "core/nlp/derivative_checker.h"
 #include "core/nlp/polynomial_program.h"
+#include "core/util/check.h"
 #include "core/util/numbers.h"
 #include "tests/test_support_derivatives.h"
 #include "tests/test_support_mpcc.h"
@@ -731,6 +732,42 @@ TEST(MpccRelaxed, RaisesZetaUntilTheRelaxationHoldsThenSolves) {
   EXPECT_NEAR(r.objective, 1.0, 1e-6);
   EXPECT_NEAR(r.z[0], 0.0, 1e-4);
   EXPECT_NEAR(r.z[1], 4.0, 1e-4);
+}
+
+// ElasticRequest::relaxation (reduction.minimize_weak homotopy): under formulation lumped, a
+// request with it runs the relaxed formulation's homotopy on the same NLP, so its answer is
+// the relaxed formulation's, bit for bit, and another solve than the lumped penalty loop's.
+TEST(MpccRelaxed, ARelaxationRequestUnderLumpedIsTheRelaxedSolve) {
+  const auto p = zeta_problem();
+  ElasticSettings lumped = low_zeta_settings(ElasticFormulation::kLumped, true);
+  ElasticSettings relaxed = low_zeta_settings(ElasticFormulation::kRelaxed, true);
+  lumped.stall_change = relaxed.stall_change = kNoStall;
+  IpoptSolver ipopt(disco_yaml_ipopt_settings());
+  ElasticRequest relaxation;
+  relaxation.relaxation = true;
+  const MpccResult requested = ElasticSolver(ipopt, lumped).solve(p, p.initial_point(), relaxation);
+  const MpccResult formulation = ElasticSolver(ipopt, relaxed).solve(p, p.initial_point());
+  const MpccResult penalty = ElasticSolver(ipopt, lumped).solve(p, p.initial_point());
+  SCOPED_TRACE("requested: " + describe(requested) + "\nrelaxed: " + describe(formulation) +
+               "\nlumped: " + describe(penalty));
+  ASSERT_EQ(requested.status, MpccStatus::kSolved);
+  EXPECT_EQ(requested.nlp_solves, formulation.nlp_solves);
+  EXPECT_EQ(requested.iterations, formulation.iterations);
+  EXPECT_EQ(requested.zeta, formulation.zeta);
+  ASSERT_EQ(requested.z.size(), formulation.z.size());
+  for (int k = 0; k < requested.z.size(); ++k) EXPECT_EQ(requested.z[k], formulation.z[k]) << k;
+  EXPECT_NE(requested.iterations, penalty.iterations) << "the penalty loop's solve";
+  EXPECT_NEAR(requested.objective, 1.0, 1e-6);
+  EXPECT_NEAR(penalty.objective, 1.0, 1e-6);
+  // Per pair has no lumped row to relax: a programming error, refused by the settings first.
+  const ElasticSettings per_pair = settings_for(ElasticFormulation::kPerPair, true);
+  try {
+    ElasticSolver(ipopt, per_pair).solve(p, p.initial_point(), relaxation);
+    ADD_FAILURE() << "per pair solved a relaxation request";
+  } catch (const InternalError& e) {
+    EXPECT_NE(std::string(e.what()).find("a relaxation request needs"), std::string::npos)
+        << e.what();
+  }
 }
 
 // ------------------------------------------------ a fixed objective ---

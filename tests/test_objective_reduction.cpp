@@ -501,6 +501,60 @@ TEST(ObjectiveReduction, AMinimisationStartsWeakAndFallsBackUncertified) {
   EXPECT_TRUE(same(tiny.solves[first + 1], off.solves[first])) << "the fallback: as without";
 }
 
+// reduction.minimize_weak homotopy: the weak attempt of a minimisation runs the relaxation
+// homotopy (ElasticRequest::relaxation) instead of the penalty loop. Every solve before the
+// first minimisation is the same, bit for bit; that minimisation is another solve (stages of
+// the homotopy and polish: more NLP solves than the penalty loop's), certified below its
+// bound; and the loop ends certified and strongly stationary. Without a weak attempt
+// (reduction.minimize_zeta 0) the setting changes nothing.
+TEST(ObjectiveReduction, AWeakMinimisationByTheRelaxationHomotopy) {
+  const Scene scene = scenario("two_robots_swap_avoid", {"steps=20"});
+  auto run = [&](std::initializer_list<const char*> overrides) {
+    std::vector<std::string> all{kIpoptsOwnFactorisations, "elastic.zeta=10"};
+    all.insert(all.end(), overrides.begin(), overrides.end());
+    RobotProblem problem(scene);
+    DefaultSolvers d(all);
+    d.schedule.minimizer = Minimizer::kElastic;
+    ReductionResult r = reduce_objective(problem, d.solver, d.schedule);
+    print(r);
+    return r;
+  };
+  const ReductionResult penalty = run({"reduction.minimize_zeta=1"});
+  const ReductionResult homotopy =
+      run({"reduction.minimize_zeta=1", "reduction.minimize_weak=homotopy"});
+  ASSERT_TRUE(penalty.found);
+  ASSERT_TRUE(homotopy.found);
+  auto same = [](const SolveRecord& a, const SolveRecord& b) {
+    return a.kind == b.kind && a.iterations == b.iterations && a.T_f == b.T_f &&
+           a.status == b.status && a.nlp_solves == b.nlp_solves;
+  };
+  size_t first = 0;
+  while (first < penalty.solves.size() && penalty.solves[first].kind != SolveKind::kMinimize)
+    ++first;
+  ASSERT_LT(first, penalty.solves.size()) << "no minimisation";
+  ASSERT_LT(first, homotopy.solves.size());
+  for (size_t k = 0; k < first; ++k) EXPECT_TRUE(same(homotopy.solves[k], penalty.solves[k])) << k;
+  const SolveRecord &h = homotopy.solves[first], &p = penalty.solves[first];
+  EXPECT_EQ(h.kind, SolveKind::kMinimize);
+  EXPECT_EQ(h.bound, p.bound);
+  EXPECT_GT(h.nlp_solves, p.nlp_solves) << "the homotopy's stages";
+  EXPECT_EQ(h.status, MpccStatus::kSolved);
+  EXPECT_TRUE(h.improved);
+  EXPECT_LT(h.T_f, h.bound);
+  EXPECT_EQ(homotopy.stationarity, Stationarity::kStrong);
+  // The answer: both are local optima of the same MPCC, and the homotopy's is within the
+  // scene's few percent of the penalty loop's (two robots swapping around each other).
+  EXPECT_NEAR(homotopy.best_value, penalty.best_value, 0.05 * penalty.best_value);
+
+  const ReductionResult off = run({"reduction.minimize_zeta=0"});
+  const ReductionResult off_homotopy =
+      run({"reduction.minimize_zeta=0", "reduction.minimize_weak=homotopy"});
+  ASSERT_EQ(off_homotopy.solves.size(), off.solves.size());
+  for (size_t k = 0; k < off.solves.size(); ++k)
+    EXPECT_TRUE(same(off_homotopy.solves[k], off.solves[k])) << "no weak attempt, solve " << k;
+  EXPECT_EQ(off_homotopy.best_value, off.best_value);
+}
+
 TEST(ObjectiveReduction, ALocalOptimumEndsTheLoopOnceAProbeBelowItFails) {
   // With reduction.probe_after_minimize: a minimising step that converges strictly inside its bound, or a
   // `minimize` phase that converges, is a local optimum: at most one fixed

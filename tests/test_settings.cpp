@@ -260,6 +260,7 @@ TEST(Settings, TheSectionReadersRefuseValuesOutOfRange) {
       {"reduction.step_iterations=0", "reduction.step_iterations", "must be >= 1", true},
       {"reduction.flip_rounds=-2", "reduction.flip_rounds", "must be >= 0", true},
       {"reduction.time_limit=-1", "reduction.time_limit", "must be >= 0", true},
+      {"reduction.minimize_weak=fast", "reduction.minimize_weak", "must be 'penalty' or 'homotopy', got 'fast'", true},
   };
   for (const Case& c : cases) {
     Settings s = Settings::load(default_settings_path());
@@ -282,6 +283,28 @@ TEST(Settings, TheSectionReadersRefuseValuesOutOfRange) {
   expect_prefix(error_of([&] { reduction_settings(Settings::load(file)); }),
                 file + ":3: key 'feasibility.horizon_min': ", "must be positive");
   std::filesystem::remove(file);
+}
+
+// reduction.minimize_weak homotopy relaxes the lumped row and ends by polish: with another
+// formulation, or without polish, reduction_settings refuses it, naming the key.
+TEST(Settings, TheWeakHomotopyNeedsTheLumpedRowAndPolish) {
+  auto error_for = [](std::initializer_list<const char*> overrides) {
+    Settings s = Settings::load(default_settings_path());
+    for (const char* o : overrides) s.apply_override(o);
+    return error_of([&] { reduction_settings(s); });
+  };
+  const char* const homotopy = "reduction.minimize_weak=homotopy";
+  for (const char* form : {"per_pair", "barrier"}) {
+    const std::string msg = error_for({homotopy, (std::string("elastic.formulation=") + form).c_str()});
+    EXPECT_EQ(msg, std::string("--set: key 'reduction.minimize_weak': homotopy relaxes the lumped "
+                               "row: it needs elastic.formulation lumped or relaxed, not ") + form);
+  }
+  const std::string polish = error_for({homotopy, "elastic.polish=false"});
+  EXPECT_NE(polish.find("key 'reduction.minimize_weak': homotopy needs elastic.polish"),
+            std::string::npos) << polish;
+  EXPECT_EQ(error_for({homotopy}), "no exception");
+  EXPECT_EQ(error_for({homotopy, "elastic.formulation=relaxed"}), "no exception");
+  EXPECT_EQ(error_for({"elastic.formulation=per_pair"}), "no exception") << "penalty: any formulation";
 }
 
 }  // namespace

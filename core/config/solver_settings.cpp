@@ -198,6 +198,18 @@ ReductionSettings reduction_settings(const Settings& s) {
   r.probe_after_minimize = s.boolean("reduction.probe_after_minimize");
   r.cold_minimize = choice<bool>(s, "reduction.minimize_duals", {{"cold", true}, {"warm", false}});
   r.minimize_zeta = non_negative(s, "reduction.minimize_zeta");
+  r.weak_homotopy = choice<bool>(s, "reduction.minimize_weak", {{"penalty", false}, {"homotopy", true}});
+  if (r.weak_homotopy) {
+    const std::string form = s.text("elastic.formulation");
+    if (form != "lumped" && form != "relaxed")
+      refuse(s, "reduction.minimize_weak",
+             "homotopy relaxes the lumped row: it needs elastic.formulation lumped or relaxed, "
+             "not " + form);
+    if (!s.boolean("elastic.polish"))
+      refuse(s, "reduction.minimize_weak",
+             "homotopy needs elastic.polish: its homotopy ends where the relaxation stops "
+             "holding, and polish fixes the branch");
+  }
   r.minimizer = choice<Minimizer>(s, "reduction.minimize",
                                   {{"elastic", Minimizer::kElastic}, {"branch", Minimizer::kBranch}});
   r.flip_rounds = integer_at_least(s, "reduction.flip_rounds", 0);

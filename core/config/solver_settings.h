@@ -64,6 +64,10 @@ struct ReductionSettings {
   // raises up to the best point's zeta times elastic.zeta_factor; if that is not certified it
   // runs again as without (search/objective_reduction.h, "Minimisations"). 0: off.
   double minimize_zeta = 0.0;
+  // kElastic, with minimize_zeta: the weak attempt runs as the relaxation homotopy
+  // (ElasticRequest::relaxation; `homotopy`) instead of elastic.formulation's penalty loop
+  // (`penalty`); its fallback, uncertified, runs as always (reduction.minimize_weak).
+  bool weak_homotopy = false;
   int flip_rounds = 0;      // kBranch: at most this many rounds of flips per branch descent
   double time_limit = 0.0;  // s; 0 = none
   // Under a time limit: a step or minimisation cut by it has its point polished on its branch

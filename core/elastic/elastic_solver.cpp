@@ -364,8 +364,12 @@ MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta,
   };
 
   // 1-2. Elastic solves until complementarity is tight (or cannot be made so).
+  const bool homotopy = settings_.formulation == ElasticFormulation::kRelaxed ||
+                        (request.relaxation && settings_.formulation == ElasticFormulation::kLumped);
+  DISCO_CHECK(homotopy || !request.relaxation,
+              "a relaxation request needs elastic.formulation lumped or relaxed");
   const bool converged =
-      settings_.formulation == ElasticFormulation::kRelaxed
+      homotopy
           ? relaxation_homotopy(nlp, std::move(start), zeta, request, out, record)
           : penalty_loop(nlp, std::move(start), zeta, request, out, record);
 

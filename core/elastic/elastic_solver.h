@@ -16,7 +16,8 @@
 //      minimal after the first solve whatever zeta, and zeta is never raised;
 //      such a solve whose eps has stopped falling far from tight is ended there, not tight,
 //      as it would end at convergence (ElasticSettings::Stagnation);
-//   With formulation kRelaxed, steps 1-2 are instead a homotopy that follows Ipopt's barrier
+//   With formulation kRelaxed (or kLumped and ElasticRequest::relaxation), steps 1-2 are
+//   instead a homotopy that follows Ipopt's barrier
 //   (after Leyffer, Lopez-Calva & Nocedal's relaxation; nosnoc's homotopy): the relaxed NLP
 //   (elastic_nlp.h) at sigma = sigma_0, sigma_0 * sigma_factor, ... down to sigma_min, each
 //   solve warm-started from the last and ended at Ipopt's barrier level
@@ -194,6 +195,11 @@ struct ElasticRequest {
   double zeta = 0.0;
   // > 0: the zeta rule raises zeta at most to this (and never past ElasticSettings::zeta_max).
   double zeta_limit = 0.0;
+  // Steps 1-2 by the relaxation homotopy of formulation kRelaxed (elastic.sigma, sigma_factor,
+  // sigma_min, barrier_ratio) whatever elastic.formulation, which must then be kLumped or
+  // kRelaxed (the same NLP) and polish on: the reduction's weak minimisations with
+  // reduction.minimize_weak homotopy (search/objective_reduction.h, "Minimisations").
+  bool relaxation = false;
 };
 
 // How well z satisfies the MPCC, in the MPCC's own units.
@@ -264,7 +270,7 @@ class ElasticSolver {
   MpccResult run(const Mpcc& mpcc, NlpPoint start, double zeta,
                  const ElasticRequest& request) const;
   // Steps 1-2 of run(): the penalty loop (kLumped, kPerPair) or the relaxation homotopy
-  // (kRelaxed). Both fill `out` (status, last solve's point and figures); `record` logs a
+  // (kRelaxed, or a request with `relaxation`). Both fill `out` (status, last solve's point and figures); `record` logs a
   // solve into it. They return whether the last NLP solve converged.
   using Record = std::function<void(const NlpResult&, const char*, double zeta)>;
   // The zeta rule of step 2: raises zeta by zeta_factor and returns true, unless the residual
