@@ -200,12 +200,14 @@ ReductionSettings reduction_settings(const Settings& s) {
   r.minimize_zeta = non_negative(s, "reduction.minimize_zeta");
   r.weak_homotopy = choice<bool>(s, "reduction.minimize_weak", {{"penalty", false}, {"homotopy", true}});
   if (r.weak_homotopy) {
-    const std::string form = s.text("elastic.formulation");
-    if (form != "lumped" && form != "relaxed")
+    // ElasticSolver::run's condition for a relaxation request, on the parsed formulation.
+    const ElasticSettings e = elastic_settings(s);
+    if (e.formulation != ElasticFormulation::kLumped &&
+        e.formulation != ElasticFormulation::kRelaxed)
       refuse(s, "reduction.minimize_weak",
              "homotopy relaxes the lumped row: it needs elastic.formulation lumped or relaxed, "
-             "not " + form);
-    if (!s.boolean("elastic.polish"))
+             "not " + s.text("elastic.formulation"));
+    if (!e.polish)
       refuse(s, "reduction.minimize_weak",
              "homotopy needs elastic.polish: its homotopy ends where the relaxation stops "
              "holding, and polish fixes the branch");
