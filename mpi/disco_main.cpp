@@ -298,9 +298,11 @@ int solve_checked(const SolveOptions& o, const Settings& settings, const Scene& 
   }
   spdlog::info("KKT: {} factorisations, {} of them by MUMPS for disco's LDLᵀ, {} by its pivoting "
                "LDLᵀ for the other, {} pivot threshold raises (kkt.solver); {} analyses ordered "
-               "by nested dissection (kkt.ldlt.ordering)",
+               "by nested dissection (kkt.ldlt.ordering); {} polish solves started again by "
+               "kkt.polish_rescue",
                run.info.kkt_factorisations, run.info.kkt_fallbacks, run.info.kkt_to_pivoted,
-               run.info.kkt_threshold_raises, run.info.kkt_nested_dissection);
+               run.info.kkt_threshold_raises, run.info.kkt_nested_dissection,
+               run.info.kkt_polish_rescues);
   spdlog::info("{} NLP solves, {} iterations, {:.3f} s; wrote {}", run.info.nlp_solves,
                run.info.iterations, run.info.wall_s, path);
   return run.solved() ? 0 : 3;

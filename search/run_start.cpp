@@ -100,7 +100,8 @@ json StartOutcome::to_json() const {
             {"fallbacks", kkt_fallbacks},
             {"threshold_raises", kkt_threshold_raises},
             {"to_pivoted", kkt_to_pivoted},
-            {"nested_dissection", kkt_nested_dissection}}},
+            {"nested_dissection", kkt_nested_dissection},
+            {"polish_rescues", kkt_polish_rescues}}},
           {"seconds", seconds},
           {"time_to_first_feasible", time_to_first_feasible},
           {"time_to_best", time_to_best},
@@ -140,6 +141,7 @@ StartOutcome StartOutcome::from_json(const json& j) {
     o.kkt_threshold_raises = j["kkt"].value("threshold_raises", 0);
     o.kkt_to_pivoted = j["kkt"].value("to_pivoted", 0);
     o.kkt_nested_dissection = j["kkt"].value("nested_dissection", 0);  // older files: none
+    o.kkt_polish_rescues = j["kkt"].value("polish_rescues", 0);  // older files: none
   }
   o.seconds = j.value("seconds", 0.0);
   o.time_to_first_feasible = j.value("time_to_first_feasible", -1.0);
@@ -172,6 +174,7 @@ StartOutcome better_of(const StartOutcome& first, const StartOutcome& second) {
   o.kkt_threshold_raises = first.kkt_threshold_raises + second.kkt_threshold_raises;
   o.kkt_to_pivoted = first.kkt_to_pivoted + second.kkt_to_pivoted;
   o.kkt_nested_dissection = first.kkt_nested_dissection + second.kkt_nested_dissection;
+  o.kkt_polish_rescues = first.kkt_polish_rescues + second.kkt_polish_rescues;
   o.time_to_first_feasible = first.time_to_first_feasible >= 0 ? first.time_to_first_feasible
                              : second.time_to_first_feasible >= 0 ? dt + second.time_to_first_feasible
                                                                   : -1.0;
@@ -221,6 +224,7 @@ StartOutcome run_start(const Scene& scene, const Settings& settings, const Start
     out.kkt_threshold_raises = r.kkt.threshold_raises;
     out.kkt_to_pivoted = r.kkt.to_pivoted;
     out.kkt_nested_dissection = r.kkt.nested_dissection;
+    out.kkt_polish_rescues = r.kkt.polish_rescues;
     out.time_to_first_feasible = r.time_to_first_feasible;
     out.time_to_best = r.time_to_best;
     for (const auto& i : r.history) out.history.push_back({i.seconds, i.value});

@@ -77,6 +77,7 @@ struct StartOutcome {
   // the matrices the LDLᵀ passed to the pivoting one (core/ipopt/kkt_solver.h), the analyses
   // that kept nested dissection (KktCounts::nested_dissection)
   int kkt_factorisations = 0, kkt_fallbacks = 0, kkt_threshold_raises = 0, kkt_to_pivoted = 0;
+  int kkt_polish_rescues = 0;
   int kkt_nested_dissection = 0;
   double seconds = 0.0;
   double time_to_first_feasible = -1.0, time_to_best = -1.0;  // s within the start

@@ -128,6 +128,7 @@ SceneSolve solve_scene(const Scene& scene, const Settings& settings, const Start
   out.info.kkt_threshold_raises = out.result.kkt.threshold_raises;
   out.info.kkt_to_pivoted = out.result.kkt.to_pivoted;
   out.info.kkt_nested_dissection = out.result.kkt.nested_dissection;
+  out.info.kkt_polish_rescues = out.result.kkt.polish_rescues;
   if (out.result.found) {
     out.z = out.result.best.z;
     out.info.stationarity = out.result.stationarity;

@@ -1,12 +1,14 @@
 #!/usr/bin/env python3
 """The command line's traps (run by CTest as cli.traps and cli.clock; see tests/CMakeLists.txt).
 
-  cli_tests.py DISCO SCENES WORKDIR [traps | clock | ordering]
+  cli_tests.py DISCO SCENES WORKDIR [traps | clock | ordering | rescue]
 
 clock: on the simulated clock (`clock.kind: iterations`) a time-limited solve gives the same
 point, counts and time twice, and a bad clock key is refused. ordering: on a dense contact
 scene the KKT analyses keep METIS's nested dissection (kkt.ldlt.ordering), counted in
-solution.json and the log, and none with the threshold out of reach. traps (the default):
+solution.json and the log, and none with the threshold out of reach. rescue: the polishes that
+kkt.polish_rescue started again are counted alike in solution.json, the summary and the solve
+log, and none with its solver 'same'. traps (the default):
 Each check runs disco and looks at its exit status and messages: the scene file may come
 after --set; an unknown command is named, with the closest one; a settings key that is a
 scene key gets the 'scene.' hint, a mistyped one the closest key; --model-only checks every
@@ -78,6 +80,32 @@ pairs: {mode: contact, mu: 0.226}
           f"with nested_dissection_above out of reach: AMD only (exit, solution.json, log, "
           f"factorisations: {amd_only})")
     finish("cli_tests ordering")
+
+if MODE == "rescue":
+    # kkt.polish_rescue (core/ipopt/ipopt_solver.h): with `after` 1 every polish that Ipopt has
+    # not ended at its first iterate is started again by the pivoting LDLT; the count is the
+    # same in solution.json, the summary's KKT line and the --verbose solve log ("rescued").
+    # With the solver 'same' there is no rescue.
+    counts = {}
+    for name, rescue in (("rescued", "pivoted"), ("same", "same")):
+        out = os.path.join(WORK, name)
+        r = run("solve", AXIS, "--set", "scene.steps=20", "--set", "kkt.polish_rescue.after=1",
+                "--set", f"kkt.polish_rescue.solver={rescue}", "--out", out, "-v")
+        path = os.path.join(out, "solution.json")
+        doc = json.load(open(path)) if os.path.exists(path) else {}
+        summary = re.search(r"(\d+) polish solves started again by kkt.polish_rescue", r.stderr)
+        counts[name] = (r.returncode, doc.get("status"), doc.get("timing", {}).get("kkt", {}).get("polish_rescues"),
+                        summary and int(summary.group(1)), r.stderr.count("rescued (kkt.polish_rescue)"),
+                        r.stderr.count("ipopt polish"))
+    rescued, same = counts["rescued"], counts["same"]
+    check(rescued[0] == 0 and rescued[1] == "solved" and rescued[2] is not None and rescued[2] >= 1
+          and rescued[2] == rescued[3] == rescued[4] and rescued[4] <= rescued[5],
+          f"after 1: polishes rescued, counted alike in solution.json, the summary and the log "
+          f"(exit, status, solution.json, summary, log, polishes: {rescued})")
+    check(same[0] == 0 and same[1] == "solved" and same[2] == 0 and same[3] == 0 and same[4] == 0
+          and same[5] >= 1,
+          f"solver same: no rescue (exit, status, solution.json, summary, log, polishes: {same})")
+    finish("cli_tests rescue")
 
 if MODE == "clock":
     # The simulated clock (`clock.kind: iterations`, core/util/clock.h): a time-limited solve

@@ -8,12 +8,14 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "core/config/settings.h"
 #include "core/config/solver_settings.h"
 #include "core/elastic/elastic_nlp.h"
+#include "core/elastic/elastic_solver.h"
 #include "core/ipopt/ipopt_solver.h"
 #include "core/ipopt/kkt_solver.h"
 #include "core/model/robot_problem.h"
@@ -165,6 +167,117 @@ TEST(KktSolver, BadSettingsAreRefusedNamingTheKey) {
             std::string::npos);
   EXPECT_NE(message("kkt.ldlt.pivoting.zero_pivot=-1").find("kkt.ldlt.pivoting.zero_pivot"),
             std::string::npos);
+  EXPECT_NE(message("kkt.polish_rescue.solver=pardiso").find("kkt.polish_rescue.solver"),
+            std::string::npos);
+  EXPECT_NE(message("kkt.polish_rescue.after=-1").find("kkt.polish_rescue.after"),
+            std::string::npos);
+}
+
+// kkt.polish_rescue: a solve with a branch fixed (NlpLimits::fixed_branch) that has not converged
+// within `after` iterations by kkt.solver is started again from its start by the rescue solver
+// (after 0: by it alone; solver same: never), every other solve by kkt.solver. Seen bit for
+// bit against plain solves by MUMPS and by the pivoting LDLᵀ, which end at different points.
+TEST(KktSolver, ASolveWithAFixedBranchIsRescuedByThePolishRescueSolver) {
+  const Contact c;
+  NlpPoint start;
+  start.z = c.elastic.lift(smoothstep_guess(c.rp, 4.0));
+  NlpLimits fixed;
+  fixed.fixed_branch = true;
+  const auto solver = [](const std::string& kkt, const std::string& rescue, int after) {
+    return std::make_unique<IpoptSolver>(settings_with({"kkt.solver=" + kkt,
+                                                        "kkt.polish_rescue.solver=" + rescue,
+                                                        "kkt.polish_rescue.after=" +
+                                                            std::to_string(after)}));
+  };
+  const NlpResult by_mumps = solver("mumps", "same", 1)->solve(c.elastic, start);
+  const NlpResult by_pivoted = solver("pivoted", "same", 1)->solve(c.elastic, start);
+  ASSERT_TRUE(by_mumps.converged()) << describe(by_mumps.outcome, by_mumps.ipopt_status);
+  ASSERT_TRUE(by_pivoted.converged()) << describe(by_pivoted.outcome, by_pivoted.ipopt_status);
+  ASSERT_NE(by_mumps.point.z, by_pivoted.point.z);  // the two solvers are told apart
+  ASSERT_GT(by_mumps.iterations, 5);
+  const auto same_as = [](const NlpResult& r, const NlpResult& ref, int extra_iterations) {
+    EXPECT_EQ(r.point.z, ref.point.z);
+    EXPECT_EQ(r.iterations, ref.iterations + extra_iterations);
+  };
+
+  {
+    SCOPED_TRACE("solver same: no rescue");
+    const NlpResult r = solver("mumps", "same", 1)->solve(c.elastic, start, fixed);
+    same_as(r, by_mumps, 0);
+    EXPECT_EQ(r.kkt.polish_rescues, 0);
+  }
+  {
+    SCOPED_TRACE("after 0: the rescue solver alone, for a fixed branch only");
+    const auto routed = solver("mumps", "pivoted", 0);
+    const NlpResult plain = routed->solve(c.elastic, start);
+    same_as(plain, by_mumps, 0);
+    EXPECT_EQ(plain.kkt.orderings, 0);  // MUMPS orders nothing of disco's
+    const NlpResult r = routed->solve(c.elastic, start, fixed);
+    same_as(r, by_pivoted, 0);
+    EXPECT_EQ(r.kkt.orderings, 1);
+    EXPECT_EQ(r.kkt.polish_rescues, 0);
+  }
+  {
+    SCOPED_TRACE("after 5: MUMPS's 5 iterations, then the pivoting LDLT's solve from the start");
+    const NlpResult r = solver("mumps", "pivoted", 5)->solve(c.elastic, start, fixed);
+    ASSERT_TRUE(r.converged());
+    same_as(r, by_pivoted, 5);
+    EXPECT_EQ(r.kkt.polish_rescues, 1);
+  }
+  {
+    // (A cap of k iterations stops at iterate k before Ipopt tests it: MUMPS's solve ends
+    // there with one more.)
+    SCOPED_TRACE("converged within `after`: MUMPS's solve");
+    const NlpResult r =
+        solver("mumps", "pivoted", by_mumps.iterations + 1)->solve(c.elastic, start, fixed);
+    same_as(r, by_mumps, 0);
+    EXPECT_EQ(r.kkt.polish_rescues, 0);
+  }
+  {
+    SCOPED_TRACE("the request's own iteration limit first: no rescue; later: the rest of it");
+    NlpLimits capped = fixed;
+    capped.iterations = 3;
+    const NlpResult r = solver("mumps", "pivoted", 5)->solve(c.elastic, start, capped);
+    EXPECT_EQ(r.outcome, NlpOutcome::kIterationCap);
+    EXPECT_EQ(r.iterations, 3);
+    EXPECT_EQ(r.kkt.polish_rescues, 0);
+    capped.iterations = 8;
+    const NlpResult rest = solver("mumps", "pivoted", 5)->solve(c.elastic, start, capped);
+    EXPECT_EQ(rest.outcome, NlpOutcome::kIterationCap);
+    EXPECT_EQ(rest.iterations, 8);
+    EXPECT_EQ(rest.kkt.polish_rescues, 1);
+  }
+}
+
+// The elastic solver's solves with a branch fixed, its polish and solve_branch's branch solves,
+// are the ones kkt.polish_rescue applies to: with `after` 0, under kkt.solver mumps, only they
+// make disco's solvers order a structure (KktCounts::orderings), and only with solver pivoted.
+TEST(KktSolver, PolishAndBranchSolvesAreTheFixedBranchSolves) {
+  const Contact c;
+  const Vector guess = smoothstep_guess(c.rp, 4.0);
+  Settings base = Settings::load(default_settings_path());
+  base.apply_override("kkt.solver=mumps");
+  base.apply_override("kkt.polish_rescue.after=0");
+  for (const bool polish : {true, false}) {
+    for (const std::string rescue : {"pivoted", "same"}) {
+      SCOPED_TRACE(std::string(polish ? "polish, " : "no polish, ") + rescue);
+      Settings s = base;
+      s.apply_override("kkt.polish_rescue.solver=" + rescue);
+      s.apply_override(std::string("elastic.polish=") + (polish ? "true" : "false"));
+      IpoptSolver ipopt(ipopt_settings(s));
+      const ElasticSolver solver(ipopt, elastic_settings(s));
+      const MpccResult r = solver.solve(c.rp.program(), guess);
+      ASSERT_TRUE(r.solved()) << to_string(r.status);
+      EXPECT_EQ(r.polished, polish);
+      const bool routed = rescue == "pivoted";
+      EXPECT_EQ(r.kkt.orderings > 0, polish && routed);
+      IpoptSolver branch_ipopt(ipopt_settings(s));
+      const ElasticSolver branch(branch_ipopt, elastic_settings(s));
+      const MpccResult b = branch.solve_branch(c.rp.program(), r, 0);
+      EXPECT_EQ(b.branch_solves, 1);
+      EXPECT_EQ(b.kkt.orderings > 0, routed);
+    }
+  }
 }
 
 TEST(KktSolver, TheObjectiveReductionEndsCertifiedWithTheLdlt) {

@@ -99,6 +99,14 @@ IpoptSettings ipopt_settings(const Settings& s) {
       s, "kkt.solver", {{"mumps", KktSolverKind::kMumps},
                                     {"ldlt", KktSolverKind::kLdlt},
                                     {"pivoted", KktSolverKind::kPivoted}});
+  i.polish_rescue_solver = choice<std::optional<KktSolverKind>>(
+                               s, "kkt.polish_rescue.solver",
+                               {{"same", std::nullopt},
+                                {"mumps", KktSolverKind::kMumps},
+                                {"ldlt", KktSolverKind::kLdlt},
+                                {"pivoted", KktSolverKind::kPivoted}})
+                               .value_or(i.kkt_solver);
+  i.polish_rescue_after = integer_at_least(s, "kkt.polish_rescue.after", 0);
   i.ldlt = ldlt_settings(s);
   i.dump.every = integer_at_least(s, "kkt.dump.every", 0);
   i.dump.dir = s.text("kkt.dump.dir");

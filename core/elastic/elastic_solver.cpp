@@ -62,6 +62,10 @@ NlpLimits limits(const ElasticRequest& request) {
 bool past(const ElasticRequest& request) {
   return request.deadline && Clock::now() >= *request.deadline;
 }
+// The solve log's note on a solve that kkt.polish_rescue started again with its solver.
+const char* rescue_note(const NlpResult& r) {
+  return r.kkt.polish_rescues > 0 ? "  rescued (kkt.polish_rescue)" : "";
+}
 // The status of a solve that did not converge.
 MpccStatus unconverged_status(const NlpResult& r) {
   return r.outcome == NlpOutcome::kInfeasible ? MpccStatus::kInfeasible : MpccStatus::kFailed;
@@ -118,7 +122,9 @@ MpccResult ElasticSolver::solve_branch(const Mpcc& mpcc, const MpccResult& from,
     for (int k = 0; k < nlp.num_variables(); ++k)
       point.z[k] = std::clamp(point.z[k], nlp.variable_lower()[k], nlp.variable_upper()[k]);
     if (past(request)) break;
-    const NlpResult r = ipopt_.solve(nlp, point, limits(request));
+    NlpLimits branch_limits = limits(request);
+    branch_limits.fixed_branch = true;
+    const NlpResult r = ipopt_.solve(nlp, point, branch_limits);
     out.nlp_solves += 1;
     out.iterations += r.iterations;
     out.kkt += r.kkt;
@@ -128,10 +134,10 @@ MpccResult ElasticSolver::solve_branch(const Mpcc& mpcc, const MpccResult& from,
     const Vector z = r.point.z.head(n);
     const Certificate cert = certify(mpcc, z);
     spdlog::debug("      ipopt branch  round {:<3} {:<26} {:>5} it {:>8.3f} s  compl {:.1e}  viol {:.1e}"
-                  "  kkt {}/{}",
+                  "  kkt {}/{}{}",
                   round, ipopt_status_name(r.ipopt_status), r.iterations, r.seconds,
                   cert.max_complementarity, cert.max_violation, r.kkt.fallbacks,
-                  r.kkt.factorisations);
+                  r.kkt.factorisations, rescue_note(r));
     if (!r.converged() || !cert.within(settings_.violation_tol, tol)) {
       // The first branch solve failing is the result's status; a later one keeps the last
       // certified branch point.
@@ -357,10 +363,10 @@ MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta,
     out.certificate = certify(mpcc, out.z);
     if (!mpcc.objective(out.z, out.objective)) out.objective = kInf;
     spdlog::debug("      ipopt {:<7} zeta {:<8.3g} {:<26} {:>5} it {:>8.3f} s  compl {:.1e}  viol {:.1e}"
-                  "  kkt {}/{}",
+                  "  kkt {}/{}{}",
                   what, zeta_used, ipopt_status_name(r.ipopt_status), r.iterations, r.seconds,
                   out.certificate.max_complementarity, out.certificate.max_violation,
-                  r.kkt.fallbacks, r.kkt.factorisations);
+                  r.kkt.fallbacks, r.kkt.factorisations, rescue_note(r));
   };
 
   // 1-2. Elastic solves until complementarity is tight (or cannot be made so).
@@ -398,7 +404,9 @@ MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta,
     // Ipopt's scaling limit would only scale the objective down and loosen the polish's
     // optimality (header).
     nlp.set_zeta(std::min(out.zeta, ipopt_.scaling_max_gradient()));
-    const NlpResult r = ipopt_.solve(nlp, polish_start, limits(request));
+    NlpLimits polish_limits = limits(request);
+    polish_limits.fixed_branch = true;
+    const NlpResult r = ipopt_.solve(nlp, polish_start, polish_limits);
     record(r, "polish", out.zeta);
     if (r.converged() &&
         out.certificate.within(settings_.violation_tol, settings_.complementarity_tol)) {

@@ -322,6 +322,8 @@ struct IpoptSolver::Application {
 IpoptSolver::IpoptSolver(const IpoptSettings& settings) : IpoptSolver(settings.options) {
   perturbed_first_ = settings.perturbed_first;
   kkt_solver_ = settings.kkt_solver;
+  polish_rescue_solver_ = settings.polish_rescue_solver;
+  polish_rescue_after_ = settings.polish_rescue_after;
   ldlt_ = settings.ldlt;
   dump_ = settings.dump;
 }
@@ -389,6 +391,27 @@ IpoptSolver::IpoptSolver(const std::vector<IpoptOption>& options)
 IpoptSolver::~IpoptSolver() = default;
 
 NlpResult IpoptSolver::solve(const Nlp& nlp, const NlpPoint& start, const NlpLimits& limits) {
+  if (!limits.fixed_branch || polish_rescue_solver_ == kkt_solver_)
+    return solve_once(nlp, start, limits, kkt_solver_);
+  if (polish_rescue_after_ == 0) return solve_once(nlp, start, limits, polish_rescue_solver_);
+  // The rescue's cap, unless the request's own limit comes first.
+  const bool capped = limits.iterations == 0 || limits.iterations > polish_rescue_after_;
+  NlpLimits first = limits;
+  if (capped) first.iterations = polish_rescue_after_;
+  NlpResult tried = solve_once(nlp, start, first, kkt_solver_);
+  if (!capped || tried.outcome != NlpOutcome::kIterationCap) return tried;
+  NlpLimits rest = limits;
+  if (rest.iterations > 0) rest.iterations -= tried.iterations;
+  NlpResult out = solve_once(nlp, start, rest, polish_rescue_solver_);
+  out.iterations += tried.iterations;
+  out.seconds += tried.seconds;
+  out.kkt += tried.kkt;
+  out.kkt.polish_rescues += 1;
+  return out;
+}
+
+NlpResult IpoptSolver::solve_once(const Nlp& nlp, const NlpPoint& start, const NlpLimits& limits,
+                                  KktSolverKind kkt_solver) {
   DISCO_CHECK(start.z.size() == nlp.num_variables(), "start point has the wrong size");
   if (start.has_duals()) {
     DISCO_CHECK(start.lambda.size() == nlp.num_constraints(), "warm-start duals: wrong size");
@@ -410,7 +433,7 @@ NlpResult IpoptSolver::solve(const Nlp& nlp, const NlpPoint& start, const NlpLim
         kColdPushes[k], limits.push_as_warm && !start.has_duals() ? warm_push_[k] : cold_push_[k]);
   auto* adapter = new TnlpAdapter(nlp, start, out, limits);
   Ipopt::SmartPtr<Ipopt::TNLP> tnlp = adapter;
-  const KktOptions kkt{perturbed_first_, !(warm_start_ && start.has_duals()), kkt_solver_, ldlt_,
+  const KktOptions kkt{perturbed_first_, !(warm_start_ && start.has_duals()), kkt_solver, ldlt_,
                        dump_, &dumped_, &orderings_};
   out.ipopt_status = static_cast<int>(optimize(*app, tnlp, kkt, out.kkt));
   if (adapter->error()) std::rethrow_exception(adapter->error());  // a bug in a callback

@@ -54,6 +54,12 @@ struct IpoptSettings {
   // degenerate-Hessian mode) instead of first trying none: core/ipopt/kkt_solver.h.
   bool perturbed_first = false;
   KktSolverKind kkt_solver = KktSolverKind::kMumps;
+  // kkt.polish_rescue: a solve with a branch fixed (NlpLimits::fixed_branch) that has not
+  // converged within `polish_rescue_after` iterations by kkt_solver starts again, from the same
+  // point, with `polish_rescue_solver` (0: with it from the first iteration). Its 'same' is
+  // resolved to kkt_solver when the settings are read: then there is no rescue.
+  KktSolverKind polish_rescue_solver = KktSolverKind::kMumps;
+  int polish_rescue_after = 0;
   LdltSettings ldlt;  // used with KktSolverKind::kLdlt and kPivoted
   KktDump dump;
 };
@@ -115,6 +121,11 @@ struct NlpLimits {
   // of by bound_push, bound_frac, slack_bound_push and slack_bound_frac. For a cold start from a
   // converged point (ElasticRequest::cold_start), which stays that near its corner.
   bool push_as_warm = false;
+  // Not a limit: the NLP has a branch fixed (elastic polish, branch descent): one side of every
+  // complementarity pair held at zero, so its Jacobian is often rank-deficient, which disco's
+  // regularised LDLᵀ hides from Ipopt. Such a solve may be rescued (kkt.polish_rescue,
+  // IpoptSettings::polish_rescue_solver): started again with another KKT solver.
+  bool fixed_branch = false;
 };
 
 // One change of the NLP by NlpLimits::follow_barrier, as Ipopt saw it: its iteration, its
@@ -160,6 +171,9 @@ struct KktCounts {
   // is METIS's nested dissection rather than AMD (kkt.ldlt.ordering;
   // core/linalg/permuted_symmetric.h).
   int nested_dissection = 0;
+  // Solves with a branch fixed that kkt.polish_rescue started again with its solver (their KKT
+  // work before and after is counted in the other fields).
+  int polish_rescues = 0;
   // Fill-reducing orderings computed: structures the IpoptSolver met for the first time (its
   // analyses of a structure met before reuse that ordering; permuted_symmetric.h, OrderingCache).
   int orderings = 0;
@@ -173,6 +187,7 @@ struct KktCounts {
     threshold_raises += o.threshold_raises;
     to_pivoted += o.to_pivoted;
     nested_dissection += o.nested_dissection;
+    polish_rescues += o.polish_rescues;
     orderings += o.orderings;
     return *this;
   }
@@ -208,6 +223,8 @@ class IpoptSolver {
   // Solves `nlp` from start.z; when start has duals (from a solve of an NLP
   // of the same shape) they warm-start Ipopt, if the configured warm_start_init_point is
   // "yes" (configs/disco.yaml; "no": every solve starts its duals cold).
+  // A solve with limits.fixed_branch may be two Ipopt solves from `start` (kkt.polish_rescue):
+  // the result is the second's, with both solves' iterations, seconds and KKT counts.
   NlpResult solve(const Nlp& nlp, const NlpPoint& start, const NlpLimits& limits = {});
 
   // The largest gradient entry at a solve's start that Ipopt leaves unscaled (its
@@ -216,10 +233,16 @@ class IpoptSolver {
   double scaling_max_gradient() const { return scaling_max_gradient_; }
 
  private:
+  // One Ipopt solve, its KKT matrices factorised by `kkt_solver`.
+  NlpResult solve_once(const Nlp& nlp, const NlpPoint& start, const NlpLimits& limits,
+                       KktSolverKind kkt_solver);
+
   struct Application;  // holds Ipopt's reference-counted application
   std::unique_ptr<Application> app_;
   bool perturbed_first_ = false;  // IpoptSettings::perturbed_first
   KktSolverKind kkt_solver_ = KktSolverKind::kMumps;
+  KktSolverKind polish_rescue_solver_ = KktSolverKind::kMumps;  // IpoptSettings::polish_rescue_*
+  int polish_rescue_after_ = 0;
   LdltSettings ldlt_;
   KktDump dump_;
   int dumped_ = 0;  // KKT matrices factorised so far, for kkt.dump.every

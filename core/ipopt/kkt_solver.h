@@ -31,7 +31,10 @@
 //     δc = 0, as in a polish solve) is answered "singular", as MUMPS finds it (a zero pivot):
 //     Ipopt then regularises the constraint block. (Without that, the LDLᵀ's regularisation
 //     solved such matrices, Ipopt never learned of the singularity, and polish solves took
-//     hundreds of iterations instead of tens: paper B2 start 0.)
+//     hundreds of iterations instead of tens: paper B2 start 0.) A Jacobian that is
+//     rank-deficient without an empty row is not caught so; a polish that has not converged
+//     within kkt.polish_rescue.after iterations starts again with the pivoting LDLᵀ
+//     (IpoptSolver::solve, NlpLimits::fixed_branch).
 //   - One with the asked-for inertia is solved; the first solve with a new matrix refines to
 //     kkt.ldlt.residual_tolerance, which vouches for the inertia too (sparse_ldlt.h). Later
 //     solves with the same factors (Ipopt refining its own solution) return what the factors

@@ -86,7 +86,8 @@ json solution_json(const RobotProblem& problem, const Vector& z, const SolutionI
         {"fallbacks", info.kkt_fallbacks},
         {"threshold_raises", info.kkt_threshold_raises},
         {"to_pivoted", info.kkt_to_pivoted},
-        {"nested_dissection", info.kkt_nested_dissection}}}};
+        {"nested_dissection", info.kkt_nested_dissection},
+        {"polish_rescues", info.kkt_polish_rescues}}}};
 
   const State unit{u.length, u.length, 1.0, u.velocity(), u.velocity(), 1.0 / u.time};
   auto value = [&](const Affine& a) { return a.value(z); };

@@ -7,7 +7,7 @@
 //   model {variables, constraints, complementarity_pairs},
 //   certificate {max_violation, max_complementarity, complementarity_product, units},
 //   timing {wall_s, nlp_solves, iterations, kkt {factorisations, fallbacks, threshold_raises,
-//   to_pivoted, nested_dissection}},
+//   to_pivoted, nested_dissection, polish_rescues}},
 //   robots[]: name, kind ("robot", or "object": a passive disk, F_max = 0, force_dims = 0,
 //     Fx = Fy = 0; objects follow the robots), radius, mass, inertia, mu, damping, F_max,
 //     force_dims, K,
@@ -67,6 +67,7 @@ struct SolutionInfo {
   // threshold, and how many matrices the LDLᵀ passed to the pivoting one (core/ipopt/kkt_solver.h);
   // how many analyses kept nested dissection (KktCounts::nested_dissection).
   int kkt_factorisations = 0, kkt_fallbacks = 0, kkt_threshold_raises = 0, kkt_to_pivoted = 0;
+  int kkt_polish_rescues = 0;
   int kkt_nested_dissection = 0;
 };
 
