@@ -53,10 +53,11 @@ Certificate certify(const Mpcc& mpcc, const ConstVectorRef& z) {
 
 namespace {
 // One Ipopt solve's limits under a request (a solve started past the deadline stops at its
-// first iteration).
-NlpLimits limits(const ElasticRequest& request) {
+// first iteration); fixed_branch: a polish or branch solve (NlpLimits::fixed_branch).
+NlpLimits limits(const ElasticRequest& request, bool fixed_branch = false) {
   NlpLimits l{request.iteration_limit, request.deadline, std::nullopt, {}, std::nullopt};
   l.push_as_warm = request.cold_start;  // only its first solve starts without duals
+  l.fixed_branch = fixed_branch;
   return l;
 }
 bool past(const ElasticRequest& request) {
@@ -122,9 +123,7 @@ MpccResult ElasticSolver::solve_branch(const Mpcc& mpcc, const MpccResult& from,
     for (int k = 0; k < nlp.num_variables(); ++k)
       point.z[k] = std::clamp(point.z[k], nlp.variable_lower()[k], nlp.variable_upper()[k]);
     if (past(request)) break;
-    NlpLimits branch_limits = limits(request);
-    branch_limits.fixed_branch = true;
-    const NlpResult r = ipopt_.solve(nlp, point, branch_limits);
+    const NlpResult r = ipopt_.solve(nlp, point, limits(request, true));
     out.nlp_solves += 1;
     out.iterations += r.iterations;
     out.kkt += r.kkt;
@@ -404,9 +403,7 @@ MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta,
     // Ipopt's scaling limit would only scale the objective down and loosen the polish's
     // optimality (header).
     nlp.set_zeta(std::min(out.zeta, ipopt_.scaling_max_gradient()));
-    NlpLimits polish_limits = limits(request);
-    polish_limits.fixed_branch = true;
-    const NlpResult r = ipopt_.solve(nlp, polish_start, polish_limits);
+    const NlpResult r = ipopt_.solve(nlp, polish_start, limits(request, true));
     record(r, "polish", out.zeta);
     if (r.converged() &&
         out.certificate.within(settings_.violation_tol, settings_.complementarity_tol)) {

@@ -48,7 +48,9 @@
 //      its weight: polish weighs it with min(zeta, IpoptSolver::scaling_max_gradient()), since
 //      a zeta above that would only make Ipopt scale the objective down (gradient-based
 //      scaling at the start, by nlp_scaling_max_gradient / zeta) and loosen the polished
-//      point's optimality as much.
+//      point's optimality as much. Its solve, like solve_branch's, has a branch fixed
+//      (NlpLimits::fixed_branch): one that has not converged within kkt.polish_rescue.after
+//      iterations starts again with the pivoting LDLᵀ (IpoptSolver::solve).
 // Every answer is certified on the MPCC itself (certify()); a result is
 // kSolved only when Ipopt converged AND the certificate meets both
 // tolerances.
