@@ -455,6 +455,8 @@ TEST(ObjectiveReduction, OnlyTheMinimisationsStartCold) {
 //   path, and the loop ends certified and strongly stationary;
 // - 1e-9: the weak attempt ends uncertified (not tight: its raises, at most to 10 times 10,
 //   end first), and the minimisation then runs as without, bit for bit.
+// The weak attempt here is the penalty loop (reduction.minimize_weak penalty; the homotopy's:
+// AWeakMinimisationByTheRelaxationHomotopy below).
 TEST(ObjectiveReduction, AMinimisationStartsWeakAndFallsBackUncertified) {
   const Scene scene = scenario("two_robots_swap_avoid", {"steps=20"});
   const char* const weak[4] = {"reduction.minimize_zeta=0", "reduction.minimize_zeta=1000",
@@ -462,7 +464,7 @@ TEST(ObjectiveReduction, AMinimisationStartsWeakAndFallsBackUncertified) {
   ReductionResult results[4];
   for (int k = 0; k < 4; ++k) {
     RobotProblem problem(scene);
-    DefaultSolvers d({kIpoptsOwnFactorisations, "elastic.zeta=10", weak[k]});
+    DefaultSolvers d({kIpoptsOwnFactorisations, "elastic.zeta=10", "reduction.minimize_weak=penalty", weak[k]});
     d.schedule.minimizer = Minimizer::kElastic;
     results[k] = reduce_objective(problem, d.solver, d.schedule);
     std::printf("%s\n", weak[k]);
@@ -519,7 +521,7 @@ TEST(ObjectiveReduction, AWeakMinimisationByTheRelaxationHomotopy) {
     print(r);
     return r;
   };
-  const ReductionResult penalty = run({"reduction.minimize_zeta=1"});
+  const ReductionResult penalty = run({"reduction.minimize_zeta=1", "reduction.minimize_weak=penalty"});
   const ReductionResult homotopy =
       run({"reduction.minimize_zeta=1", "reduction.minimize_weak=homotopy"});
   ASSERT_TRUE(penalty.found);
@@ -546,7 +548,7 @@ TEST(ObjectiveReduction, AWeakMinimisationByTheRelaxationHomotopy) {
   // scene's few percent of the penalty loop's (two robots swapping around each other).
   EXPECT_NEAR(homotopy.best_value, penalty.best_value, 0.05 * penalty.best_value);
 
-  const ReductionResult off = run({"reduction.minimize_zeta=0"});
+  const ReductionResult off = run({"reduction.minimize_zeta=0", "reduction.minimize_weak=penalty"});
   const ReductionResult off_homotopy =
       run({"reduction.minimize_zeta=0", "reduction.minimize_weak=homotopy"});
   ASSERT_EQ(off_homotopy.solves.size(), off.solves.size());

@@ -297,14 +297,20 @@ TEST(Settings, TheWeakHomotopyNeedsTheLumpedRowAndPolish) {
   for (const char* form : {"per_pair", "barrier"}) {
     const std::string msg = error_for({homotopy, (std::string("elastic.formulation=") + form).c_str()});
     EXPECT_EQ(msg, std::string("--set: key 'reduction.minimize_weak': homotopy relaxes the lumped "
-                               "row: it needs elastic.formulation lumped or relaxed, not ") + form);
+                               "row: it needs elastic.formulation lumped or relaxed, not ") + form +
+                           " (with it, set reduction.minimize_weak penalty)");
   }
   const std::string polish = error_for({homotopy, "elastic.polish=false"});
   EXPECT_NE(polish.find("key 'reduction.minimize_weak': homotopy needs elastic.polish"),
             std::string::npos) << polish;
   EXPECT_EQ(error_for({homotopy}), "no exception");
   EXPECT_EQ(error_for({homotopy, "elastic.formulation=relaxed"}), "no exception");
-  EXPECT_EQ(error_for({"elastic.formulation=per_pair"}), "no exception") << "penalty: any formulation";
+  EXPECT_EQ(error_for({"elastic.formulation=per_pair", "reduction.minimize_weak=penalty"}),
+            "no exception") << "penalty: any formulation";
+  EXPECT_EQ(error_for({"elastic.formulation=barrier", "reduction.minimize_weak=penalty"}),
+            "no exception") << "penalty: any formulation";
+  EXPECT_EQ(error_for({"elastic.polish=false", "reduction.minimize_weak=penalty"}), "no exception")
+      << "penalty: without polish";
 }
 
 }  // namespace

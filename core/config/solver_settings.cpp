@@ -181,7 +181,7 @@ ElasticSettings elastic_settings(const Settings& s) {
   if (e.formulation == ElasticFormulation::kRelaxed && !e.polish)
     refuse(s, "elastic.polish",
            "formulation relaxed needs polish: its homotopy ends where the relaxation stops "
-           "holding, and polish fixes the branch");
+           "holding, and polish fixes the branch (without it, set reduction.minimize_weak penalty)");
   if (e.formulation == ElasticFormulation::kBarrier && !e.polish)
     refuse(s, "elastic.polish",
            "formulation barrier needs polish: at a corner where both sides of a pair vanish "
@@ -214,11 +214,11 @@ ReductionSettings reduction_settings(const Settings& s) {
         e.formulation != ElasticFormulation::kRelaxed)
       refuse(s, "reduction.minimize_weak",
              "homotopy relaxes the lumped row: it needs elastic.formulation lumped or relaxed, "
-             "not " + s.text("elastic.formulation"));
+             "not " + s.text("elastic.formulation") + " (with it, set reduction.minimize_weak penalty)");
     if (!e.polish)
       refuse(s, "reduction.minimize_weak",
              "homotopy needs elastic.polish: its homotopy ends where the relaxation stops "
-             "holding, and polish fixes the branch");
+             "holding, and polish fixes the branch (without it, set reduction.minimize_weak penalty)");
   }
   r.minimizer = choice<Minimizer>(s, "reduction.minimize",
                                   {{"elastic", Minimizer::kElastic}, {"branch", Minimizer::kBranch}});
