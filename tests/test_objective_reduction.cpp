@@ -822,6 +822,8 @@ TEST(ObjectiveReduction, RelaxedWithoutPolishIsAnErrorNamingTheKey) {
   const std::string polish = error_for({"elastic.formulation=relaxed", "elastic.polish=false"});
   EXPECT_NE(polish.find("key 'elastic.polish'"), std::string::npos) << polish;
   EXPECT_NE(polish.find("relaxed needs polish"), std::string::npos) << polish;
+  EXPECT_EQ(polish.find("minimize_weak"), std::string::npos)
+      << "the relaxed formulation itself needs polish, whatever the weak minimisation: " << polish;
   const std::string barrier = error_for({"elastic.formulation=barrier", "elastic.polish=false"});
   EXPECT_NE(barrier.find("key 'elastic.polish'"), std::string::npos) << barrier;
   EXPECT_NE(barrier.find("barrier needs polish"), std::string::npos) << barrier;

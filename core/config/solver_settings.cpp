@@ -181,7 +181,7 @@ ElasticSettings elastic_settings(const Settings& s) {
   if (e.formulation == ElasticFormulation::kRelaxed && !e.polish)
     refuse(s, "elastic.polish",
            "formulation relaxed needs polish: its homotopy ends where the relaxation stops "
-           "holding, and polish fixes the branch (without it, set reduction.minimize_weak penalty)");
+           "holding, and polish fixes the branch");
   if (e.formulation == ElasticFormulation::kBarrier && !e.polish)
     refuse(s, "elastic.polish",
            "formulation barrier needs polish: at a corner where both sides of a pair vanish "
