@@ -78,6 +78,8 @@ StartOutcome run_task(const Context& c, const Task& t, json* solution, const Inc
     try {
       from_screen = with_guess(spec, trajectory_from_solution(t.guess, scene,
                                                               fmt::format("screened start {}", t.start)));
+      // Its minimisations run search.refine_minimize_weak (search/screening.h).
+      from_screen.schedule.weak_homotopy = c.screen.refine_weak_homotopy;
     } catch (const std::exception& e) {  // an error outcome, as run_start makes them
       StartOutcome o;
       o.scene = scene.name;

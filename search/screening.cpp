@@ -31,6 +31,7 @@ ScreenSettings screen_settings(const Settings& s) {
   out.tie = s.number("search.screen_tie");
   if (!(out.tie >= 0 && out.tie < 1e-2))
     refuse("search.screen_tie", "must be >= 0 and below 1e-2 (a relative difference; 0: only equal values tie)");
+  out.refine_weak_homotopy = weak_homotopy_choice(s, "search.refine_minimize_weak");
   return out;
 }
 

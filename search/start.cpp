@@ -135,7 +135,8 @@ static std::string guess_text(const StartSpec& s) {
 nlohmann::json StartSpec::schedule_json() const {
   return {{"horizon_factor", schedule.horizon_factor}, {"rate", schedule.rate},
           {"grow", schedule.grow},                     {"shrink", schedule.shrink},
-          {"min_rate", schedule.min_rate},             {"zeta", elastic.zeta}};
+          {"min_rate", schedule.min_rate},             {"zeta", elastic.zeta},
+          {"minimize_weak", schedule.weak_homotopy ? "homotopy" : "penalty"}};
 }
 
 std::string StartSpec::describe() const {

@@ -75,7 +75,8 @@ struct StartSpec {
   ReductionSettings schedule;     // feasibility horizon factor, reduction rate, grow, shrink, ...
   ElasticSettings elastic;        // zeta, formulation, ...
   std::string describe() const;   // one line, for runs.jsonl and reports
-  // {horizon_factor, rate, grow, shrink, min_rate, zeta}: the schedule that varies by start.
+  // {horizon_factor, rate, grow, shrink, min_rate, zeta}: the schedule that varies by start;
+  // minimize_weak: `penalty` or `homotopy` (schedule.weak_homotopy).
   nlohmann::json schedule_json() const;
 };
 

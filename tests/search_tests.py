@@ -50,7 +50,9 @@ killrandom) runs --deterministic.
                search without screening, every certified screen is refined (the smoke
                benchmark's scene limit), and the best refine is the scene's best; with
                refine_from both, every refine is the better of the same start's refine from
-               its screen (refine_from screen) and its full run, with both runs' iterations.
+               its screen (refine_from screen) and its full run, with both runs' iterations;
+               each run's runs.jsonl schedule names how its minimisations ran: a refine from
+               its screen search.refine_minimize_weak, every other run reduction.minimize_weak.
   logging      logs go to stderr and results to files (stdout stays empty): the progress
                line by default, a live status line on a terminal only, nothing with --quiet, every start's solve log and every
                Ipopt solve with --verbose (each line naming its rank); the same for
@@ -80,7 +82,8 @@ with open(BENCH) as f:
 ENV = dict(os.environ, OMP_NUM_THREADS="1")
 # Screens within this relative difference rank by start (configs/disco.yaml, search.screen_tie).
 with open(os.path.join(os.path.dirname(BENCH), "..", "disco.yaml")) as f:
-    TIE = yaml.safe_load(f)["search"]["screen_tie"]
+    DEFAULTS = yaml.safe_load(f)
+TIE = DEFAULTS["search"]["screen_tie"]
 
 
 # Runs compared bit for bit (across ranks, with a clean run after a resume) are deterministic:
@@ -336,6 +339,17 @@ elif MODE == "refinefrom":
     check(search(o, 2, *DET, *screened_sets, "--set", "search.refine_from=both") == 0,
           "2-rank screened search with refines from both exits 0")
     from_screen = {(r["scene"], r["start"]): r for r in runs(s) if r["stage"] == "refine"}
+    # A refine from its screened answer minimises as search.refine_minimize_weak says; screens
+    # and runs from a start's own guess as reduction.minimize_weak says.
+    own_weak, refine_weak = DEFAULTS["reduction"]["minimize_weak"], DEFAULTS["search"]["refine_minimize_weak"]
+    uncertified_s = {(r["scene"], r["start"]) for r in runs(s) if r["stage"] == "screen" and r["T_f"] is None}
+    for r in runs(s):
+        refined_screen = r["stage"] == "refine" and (r["scene"], r["start"]) not in uncertified_s
+        want = refine_weak if refined_screen else own_weak
+        check(r["schedule"]["minimize_weak"] == want,
+              f"{r['scene']} {r['stage']} {r['start']}: minimize_weak {r['schedule']['minimize_weak']}, want {want}")
+    check(any(r["schedule"]["minimize_weak"] == refine_weak for r in from_screen.values()),
+          "a refine from its screen ran")
     both = [r for r in runs(o) if r["stage"] == "refine"]
     check(sorted((r["scene"], r["start"]) for r in both) == sorted(from_screen),
           "the same refines as from the screen")

@@ -123,7 +123,9 @@ TEST(ObjectiveReduction, AnUncertifiedPerturbationLeavesTheReductionAsWithout) {
     const SolveRecord& b = perturbed.solves[k == 0 ? 0 : k + 1];
     EXPECT_EQ(a.kind, b.kind) << k;
     EXPECT_TRUE(same_bits(a.T_f, b.T_f)) << k;
-    if (k > 0) EXPECT_EQ(a.iterations, b.iterations) << k;
+    if (k > 0) {
+      EXPECT_EQ(a.iterations, b.iterations) << k;
+    }
   }
   EXPECT_EQ(plain.solves[0].nlp_solves, 1);
   EXPECT_EQ(perturbed.solves[0].nlp_solves, 2);

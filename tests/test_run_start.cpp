@@ -103,6 +103,8 @@ TEST(RunStart, ItsHistoryListsEveryNewBestOnTheStartsOwnClock) {
   EXPECT_EQ(out.to_json()["guess"], to_string(spec.guess));
   EXPECT_EQ(out.schedule.at("rate").get<double>(), spec.schedule.rate);
   EXPECT_EQ(out.schedule.at("zeta").get<double>(), spec.elastic.zeta);
+  EXPECT_EQ(out.schedule.at("minimize_weak").get<std::string>(),
+            spec.schedule.weak_homotopy ? "homotopy" : "penalty");
   const StartOutcome back = StartOutcome::from_json(nlohmann::json::parse(out.to_json().dump()));
   EXPECT_EQ(back.history, out.history);
   EXPECT_EQ(back.guess, out.guess);

@@ -11,6 +11,7 @@
 #include "core/config/settings.h"
 #include "core/config/solver_settings.h"
 #include "core/util/errors.h"
+#include "search/screening.h"
 #include "tests/test_support_messages.h"
 
 namespace disco {
@@ -287,30 +288,42 @@ TEST(Settings, TheSectionReadersRefuseValuesOutOfRange) {
 
 // reduction.minimize_weak homotopy relaxes the lumped row and ends by polish: with another
 // formulation, or without polish, reduction_settings refuses it, naming the key.
+// Both weak-minimisation keys: reduction.minimize_weak (read by reduction_settings) and
+// search.refine_minimize_weak (read by screen_settings), through weak_homotopy_choice.
 TEST(Settings, TheWeakHomotopyNeedsTheLumpedRowAndPolish) {
-  auto error_for = [](std::initializer_list<const char*> overrides) {
-    Settings s = Settings::load(default_settings_path());
-    for (const char* o : overrides) s.apply_override(o);
-    return error_of([&] { reduction_settings(s); });
-  };
-  const char* const homotopy = "reduction.minimize_weak=homotopy";
-  for (const char* form : {"per_pair", "barrier"}) {
-    const std::string msg = error_for({homotopy, (std::string("elastic.formulation=") + form).c_str()});
-    EXPECT_EQ(msg, std::string("--set: key 'reduction.minimize_weak': homotopy relaxes the lumped "
-                               "row: it needs elastic.formulation lumped or relaxed, not ") + form +
-                           " (with it, set reduction.minimize_weak penalty)");
+  for (const std::string key : {"reduction.minimize_weak", "search.refine_minimize_weak"}) {
+    SCOPED_TRACE(key);
+    const bool refine = key == "search.refine_minimize_weak";
+    auto error_for = [&](std::initializer_list<std::string> overrides) {
+      Settings s = Settings::load(default_settings_path());
+      // The other key penalty, so only `key` can refuse.
+      s.apply_override(std::string(refine ? "reduction.minimize_weak" : "search.refine_minimize_weak") + "=penalty");
+      for (const std::string& o : overrides) s.apply_override(o);
+      return error_of([&] {
+        if (refine) screen_settings(s);
+        else reduction_settings(s);
+      });
+    };
+    const std::string homotopy = key + "=homotopy";
+    const std::string penalty = key + "=penalty";
+    for (const char* form : {"per_pair", "barrier"}) {
+      const std::string msg = error_for({homotopy, std::string("elastic.formulation=") + form});
+      EXPECT_EQ(msg, "--set: key '" + key + "': homotopy relaxes the lumped row: it needs "
+                     "elastic.formulation lumped or relaxed, not " + form +
+                     " (with it, set " + key + " penalty)");
+    }
+    const std::string polish = error_for({homotopy, "elastic.polish=false"});
+    EXPECT_NE(polish.find("key '" + key + "': homotopy needs elastic.polish"), std::string::npos) << polish;
+    EXPECT_NE(polish.find("(without it, set " + key + " penalty)"), std::string::npos) << polish;
+    EXPECT_EQ(error_for({homotopy}), "no exception");
+    EXPECT_EQ(error_for({homotopy, "elastic.formulation=relaxed"}), "no exception");
+    EXPECT_EQ(error_for({"elastic.formulation=per_pair", penalty}), "no exception") << "penalty: any formulation";
+    EXPECT_EQ(error_for({"elastic.formulation=barrier", penalty}), "no exception") << "penalty: any formulation";
+    EXPECT_EQ(error_for({"elastic.polish=false", penalty}), "no exception") << "penalty: without polish";
+    const std::string other = error_for({key + "=relaxed"});
+    EXPECT_NE(other.find("key '" + key + "': must be 'penalty' or 'homotopy', got 'relaxed'"), std::string::npos)
+        << other;
   }
-  const std::string polish = error_for({homotopy, "elastic.polish=false"});
-  EXPECT_NE(polish.find("key 'reduction.minimize_weak': homotopy needs elastic.polish"),
-            std::string::npos) << polish;
-  EXPECT_EQ(error_for({homotopy}), "no exception");
-  EXPECT_EQ(error_for({homotopy, "elastic.formulation=relaxed"}), "no exception");
-  EXPECT_EQ(error_for({"elastic.formulation=per_pair", "reduction.minimize_weak=penalty"}),
-            "no exception") << "penalty: any formulation";
-  EXPECT_EQ(error_for({"elastic.formulation=barrier", "reduction.minimize_weak=penalty"}),
-            "no exception") << "penalty: any formulation";
-  EXPECT_EQ(error_for({"elastic.polish=false", "reduction.minimize_weak=penalty"}), "no exception")
-      << "penalty: without polish";
 }
 
 }  // namespace

@@ -189,6 +189,24 @@ ElasticSettings elastic_settings(const Settings& s) {
   return e;
 }
 
+bool weak_homotopy_choice(const Settings& s, const std::string& key) {
+  const bool homotopy = choice<bool>(s, key, {{"penalty", false}, {"homotopy", true}});
+  if (homotopy) {
+    // ElasticSolver::run's condition for a relaxation request, on the parsed formulation.
+    const ElasticSettings e = elastic_settings(s);
+    if (e.formulation != ElasticFormulation::kLumped &&
+        e.formulation != ElasticFormulation::kRelaxed)
+      refuse(s, key,
+             "homotopy relaxes the lumped row: it needs elastic.formulation lumped or relaxed, "
+             "not " + s.text("elastic.formulation") + " (with it, set " + key + " penalty)");
+    if (!e.polish)
+      refuse(s, key,
+             "homotopy needs elastic.polish: its homotopy ends where the relaxation stops "
+             "holding, and polish fixes the branch (without it, set " + key + " penalty)");
+  }
+  return homotopy;
+}
+
 ReductionSettings reduction_settings(const Settings& s) {
   ReductionSettings r;
   r.horizon_factor = positive(s, "feasibility.horizon_factor");
@@ -206,20 +224,7 @@ ReductionSettings reduction_settings(const Settings& s) {
   r.probe_after_minimize = s.boolean("reduction.probe_after_minimize");
   r.cold_minimize = choice<bool>(s, "reduction.minimize_duals", {{"cold", true}, {"warm", false}});
   r.minimize_zeta = non_negative(s, "reduction.minimize_zeta");
-  r.weak_homotopy = choice<bool>(s, "reduction.minimize_weak", {{"penalty", false}, {"homotopy", true}});
-  if (r.weak_homotopy) {
-    // ElasticSolver::run's condition for a relaxation request, on the parsed formulation.
-    const ElasticSettings e = elastic_settings(s);
-    if (e.formulation != ElasticFormulation::kLumped &&
-        e.formulation != ElasticFormulation::kRelaxed)
-      refuse(s, "reduction.minimize_weak",
-             "homotopy relaxes the lumped row: it needs elastic.formulation lumped or relaxed, "
-             "not " + s.text("elastic.formulation") + " (with it, set reduction.minimize_weak penalty)");
-    if (!e.polish)
-      refuse(s, "reduction.minimize_weak",
-             "homotopy needs elastic.polish: its homotopy ends where the relaxation stops "
-             "holding, and polish fixes the branch (without it, set reduction.minimize_weak penalty)");
-  }
+  r.weak_homotopy = weak_homotopy_choice(s, "reduction.minimize_weak");
   r.minimizer = choice<Minimizer>(s, "reduction.minimize",
                                   {{"elastic", Minimizer::kElastic}, {"branch", Minimizer::kBranch}});
   r.flip_rounds = integer_at_least(s, "reduction.flip_rounds", 0);

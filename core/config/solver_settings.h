@@ -91,6 +91,11 @@ ModelOptions model_options(const Settings& settings);                // the `mod
 // before a model is built. Anything else is an InputError naming the file, line and key.
 MemoryLimit memory_limit(const Settings& settings);
 ReductionSettings reduction_settings(const Settings& settings);      // `feasibility:` + `reduction:`
+// A weak-minimisation key (reduction.minimize_weak, search.refine_minimize_weak): true for
+// `homotopy`, false for `penalty`. The homotopy relaxes the lumped row and ends in polish, so it
+// is an InputError naming the key unless elastic.formulation is lumped or relaxed and
+// elastic.polish is on.
+bool weak_homotopy_choice(const Settings& settings, const std::string& key);
 // search.share_incumbent (the `search:` section): whether a search's starts share the best
 // T_f of their scene (search/coordinator.h); `disco search --deterministic` sets it false.
 inline constexpr const char* kShareIncumbentKey = "search.share_incumbent";

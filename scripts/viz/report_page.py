@@ -174,7 +174,8 @@ def summary_table(scenes):
 
 SCHEDULE_KEYS = (("horizon_factor", "horizon ×{:.2f}"), ("rate", "rate {:.3f}"),
                  ("grow", "grow {:.2f}"), ("shrink", "shrink {:.2f}"),
-                 ("min_rate", "min rate {:.4f}"), ("zeta", "ζ {:g}"))
+                 ("min_rate", "min rate {:.4f}"), ("zeta", "ζ {:g}"),
+                 ("minimize_weak", "weak {}"))
 
 
 def schedule_text(r):
@@ -183,7 +184,7 @@ def schedule_text(r):
     sched = r.get("schedule")
     if isinstance(sched, dict) and sched:
         return esc(", ".join(f.format(sched[k]) for k, f in SCHEDULE_KEYS
-                             if isinstance(sched.get(k), (int, float))))
+                             if isinstance(sched.get(k), (int, float, str))))
     return esc(r.get("description", ""))
 
 
