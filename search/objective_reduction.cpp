@@ -201,10 +201,10 @@ struct Reduction {
     return improved;
   }
   bool branch(const MpccResult& from) { return branch(from, SolveKind::kBranch, cfg.flip_rounds); }
-  // One segment of the elastic minimisation: at most step_iterations Ipopt iterations from
+  // One segment of the elastic minimisation: at most segment_iterations Ipopt iterations from
   // `from` under T_f <= bound; the second member says whether it gave a new best.
   std::pair<MpccResult, bool> segment(const MpccResult& from, double bound) {
-    MpccResult r = step({Bound::kUpper, bound, cfg.step_iterations}, from);
+    MpccResult r = step({Bound::kUpper, bound, cfg.segment_iterations}, from);
     const bool improved = r.solved() && problem.objective(r.z) < out.best_value * (1.0 - kBetter);
     record(SolveKind::kMinimize, bound, r, improved);
     if (improved) take_best(MpccResult(r), true, bound);  // improved: converged

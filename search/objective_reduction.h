@@ -57,7 +57,7 @@
 //   configs/disco.yaml says which is the default and why): kElastic, one elastic-mode
 //   minimisation to convergence (as described above), or kBranch, a descent by branches
 //   instead of one long elastic solve:
-//   a) one segment of the elastic minimisation (T_f <= T_best, at most step_iterations
+//   a) one segment of the elastic minimisation (T_f <= T_best, at most segment_iterations
 //   Ipopt iterations) from the best point; b) a branch descent from the segment's point
 //   (ElasticSolver::solve_branch: the smooth program with the smaller side of every pair
 //   fixed at 0, minimised under T_f <= T_best, and biactive pairs whose fixed side has a

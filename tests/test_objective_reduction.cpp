@@ -787,6 +787,26 @@ TEST(ObjectiveReduction, TheBranchMinimizerDescendsAndReachesTheOneRobotOptimum)
   }
 }
 
+// reduction.segment_iterations, not reduction.step_iterations, is the length of the branch
+// minimiser's elastic segments: with segments of 3 iterations and minimising steps of 200,
+// every "minimize" record (a segment) took at most 3 Ipopt iterations and some took 3.
+TEST(ObjectiveReduction, TheBranchMinimizersSegmentsAreSegmentIterationsLong) {
+  const Settings settings =
+      default_settings_with({"reduction.minimize=branch", "reduction.segment_iterations=3",
+                             "reduction.step_iterations=200", kIpoptsOwnFactorisations});
+  RobotProblem problem(scenario("two_robots_swap_avoid", {"steps=20"}));
+  const ReductionResult result = reduce_with(settings, problem, "two_robots_swap_avoid");
+  int segments = 0, capped = 0;
+  for (const SolveRecord& r : result.solves) {
+    if (r.kind != SolveKind::kMinimize) continue;
+    ++segments;
+    EXPECT_LE(r.iterations, 3) << "segment " << segments;
+    if (r.iterations == 3) ++capped;
+  }
+  EXPECT_GE(segments, 1);
+  EXPECT_GE(capped, 1) << "no segment reached its cap";
+}
+
 // The relaxation homotopy (elastic.formulation relaxed) drives the loop to the same answers:
 // the one robot's closed-form optimum (its lower bound, within the discretisation error of
 // N_t = 20), every best certified, and the swap scene solved.

@@ -259,6 +259,7 @@ TEST(Settings, TheSectionReadersRefuseValuesOutOfRange) {
       {"reduction.shrink=1.5", "reduction.shrink", "must be below 1", true},
       {"reduction.max_solves=-1", "reduction.max_solves", "must be >= 0", true},
       {"reduction.step_iterations=0", "reduction.step_iterations", "must be >= 1", true},
+      {"reduction.segment_iterations=0", "reduction.segment_iterations", "must be >= 1", true},
       {"reduction.flip_rounds=-2", "reduction.flip_rounds", "must be >= 0", true},
       {"reduction.time_limit=-1", "reduction.time_limit", "must be >= 0", true},
       {"reduction.minimize_weak=fast", "reduction.minimize_weak", "must be 'penalty' or 'homotopy', got 'fast'", true},

@@ -86,7 +86,8 @@ bool same_schedule(const ReductionSettings& a, const ReductionSettings& b) {
   return a.horizon_factor == b.horizon_factor && a.horizon_min == b.horizon_min &&
          a.rate == b.rate && a.grow == b.grow && a.shrink == b.shrink &&
          a.min_rate == b.min_rate && a.max_solves == b.max_solves &&
-         a.step_iterations == b.step_iterations && a.time_limit == b.time_limit;
+         a.step_iterations == b.step_iterations &&
+         a.segment_iterations == b.segment_iterations && a.time_limit == b.time_limit;
 }
 
 bool same_elastic(const ElasticSettings& a, const ElasticSettings& b) {

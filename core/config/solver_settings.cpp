@@ -220,6 +220,7 @@ ReductionSettings reduction_settings(const Settings& s) {
   r.min_rate = positive(s, "reduction.min_rate");
   r.max_solves = integer_at_least(s, "reduction.max_solves", 0);
   r.step_iterations = integer_at_least(s, "reduction.step_iterations", 1);
+  r.segment_iterations = integer_at_least(s, "reduction.segment_iterations", 1);
   r.minimize_iterations = integer_at_least(s, "reduction.minimize_iterations", 0);
   r.probe_after_minimize = s.boolean("reduction.probe_after_minimize");
   r.cold_minimize = choice<bool>(s, "reduction.minimize_duals", {{"cold", true}, {"warm", false}});
