@@ -51,9 +51,8 @@ struct ReductionSettings {
   double horizon = 0.0;
   double rate = 0.0, grow = 0.0, shrink = 0.0, min_rate = 0.0;
   int max_solves = 0;
-  int step_iterations = 0;  // cap on a minimising step before switching to fixed
+  int step_iterations = 0;     // cap on a minimising step before switching to fixed steps
   int segment_iterations = 0;  // kBranch: the length of an elastic segment (Ipopt iterations)
-                            // steps; kBranch: also Ipopt iterations per elastic segment
   int minimize_iterations = 0;  // kElastic: cap on the early minimisation (step 3); 0 = none
   // A minimisation that converged inside the loop is probed below with a fixed step (true),
   // or ends the loop (false); search/reduction_phases.h.
