@@ -75,11 +75,12 @@ StartOutcome run_task(const Context& c, const Task& t, json* solution, const Inc
   StartSpec from_screen;
   const bool screened_answer = t.stage == Stage::kRefine && !t.guess.is_null();
   if (screened_answer) {  // a refine from its screened answer
+    // Its minimisations, from the screen and (search.refine_from both) from the start's own
+    // guess, run search.refine_minimize_weak (search/screening.h).
+    spec.schedule.weak_homotopy = c.screen.refine_weak_homotopy;
     try {
       from_screen = with_guess(spec, trajectory_from_solution(t.guess, scene,
                                                               fmt::format("screened start {}", t.start)));
-      // Its minimisations run search.refine_minimize_weak (search/screening.h).
-      from_screen.schedule.weak_homotopy = c.screen.refine_weak_homotopy;
     } catch (const std::exception& e) {  // an error outcome, as run_start makes them
       StartOutcome o;
       o.scene = scene.name;

@@ -56,10 +56,12 @@ struct ScreenSettings {
   int early_batch = 0;    // search.early_refine_batch: screens per batch (0: no early refines)
   RefineFrom refine_from = RefineFrom::kScreen;  // search.refine_from
   double tie = 0.0;       // search.screen_tie: screens this close (relative) rank by start
-  // search.refine_minimize_weak: a refine from a screened answer runs the weak attempt of its
-  // minimisations as the relaxation homotopy (true) or the penalty loop (false), whatever
-  // reduction.minimize_weak says; a refine from the start's own guess runs as a search without
-  // screening runs that start.
+  // search.refine_minimize_weak: a refine chosen from its certified screen runs the weak attempt
+  // of its minimisations as the relaxation homotopy (true) or the penalty loop (false), whatever
+  // reduction.minimize_weak says: its run from the screened answer and, with refine_from both,
+  // its run from the start's own guess. A refine from the start alone (refine_from start) and a
+  // start run in the time left without a certified screen run as a search without screening
+  // runs that start.
   bool refine_weak_homotopy = false;
   bool on() const { return fraction > 0.0; }
 };

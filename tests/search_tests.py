@@ -50,9 +50,12 @@ killrandom) runs --deterministic.
                search without screening, every certified screen is refined (the smoke
                benchmark's scene limit), and the best refine is the scene's best; with
                refine_from both, every refine is the better of the same start's refine from
-               its screen (refine_from screen) and its full run, with both runs' iterations;
-               each run's runs.jsonl schedule names how its minimisations ran: a refine from
-               its screen search.refine_minimize_weak, every other run reduction.minimize_weak.
+               its screen (refine_from screen) and its full run with its minimisations run
+               as search.refine_minimize_weak says (a search without screening with
+               reduction.minimize_weak set so), with both runs' iterations; each run's
+               runs.jsonl schedule names how its minimisations ran: a refine chosen from a
+               certified screen (refine_from screen or both) search.refine_minimize_weak, every
+               other run reduction.minimize_weak.
   logging      logs go to stderr and results to files (stdout stays empty): the progress
                line by default, a live status line on a terminal only, nothing with --quiet, every start's solve log and every
                Ipopt solve with --verbose (each line naming its rank); the same for
@@ -354,9 +357,24 @@ elif MODE == "refinefrom":
     check(sorted((r["scene"], r["start"]) for r in both) == sorted(from_screen),
           "the same refines as from the screen")
     uncertified = {(r["scene"], r["start"]) for r in runs(o) if r["stage"] == "screen" and r["T_f"] is None}
+    for r in runs(o):
+        refined_screen = r["stage"] == "refine" and (r["scene"], r["start"]) not in uncertified
+        want = refine_weak if refined_screen else own_weak
+        check(r["schedule"]["minimize_weak"] == want,
+              f"both: {r['scene']} {r['stage']} {r['start']}: minimize_weak {r['schedule']['minimize_weak']}, want {want}")
+    # A refine's run from its start's own guess minimises as search.refine_minimize_weak says:
+    # the full run of a search without screening with reduction.minimize_weak set so.
+    if refine_weak == own_weak:
+        full_refine_weak = full
+    else:
+        w = os.path.join(WORK, "full_refine_weak")
+        check(search(w, 2, "--deterministic", "--set", f"reduction.minimize_weak={refine_weak}") == 0,
+              f"2-rank search without screening, reduction.minimize_weak {refine_weak}, exits 0")
+        full_refine_weak = {(r["scene"], r["start"]): r for r in runs(w)}
     for r in both:
-        x, f = from_screen[(r["scene"], r["start"])], full[(r["scene"], r["start"])]
+        x, f = from_screen[(r["scene"], r["start"])], full_refine_weak[(r["scene"], r["start"])]
         if (r["scene"], r["start"]) in uncertified:  # the time left runs it from its own guess only
+            f = full[(r["scene"], r["start"])]  # as a search without screening runs it
             check((r["status"], repr(r["T_f"]), r["iterations"]) == (f["status"], repr(f["T_f"]), f["iterations"]),
                   f"{r['scene']} start {r['start']} without a certified screen: its full start's run")
             continue
