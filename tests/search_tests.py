@@ -342,26 +342,29 @@ elif MODE == "refinefrom":
     check(search(o, 2, *DET, *screened_sets, "--set", "search.refine_from=both") == 0,
           "2-rank screened search with refines from both exits 0")
     from_screen = {(r["scene"], r["start"]): r for r in runs(s) if r["stage"] == "refine"}
-    # A refine from its screened answer minimises as search.refine_minimize_weak says; screens
-    # and runs from a start's own guess as reduction.minimize_weak says.
+    # A refine chosen from its certified screen minimises as search.refine_minimize_weak says
+    # (both of its runs); screens and every other run as reduction.minimize_weak says.
     own_weak, refine_weak = DEFAULTS["reduction"]["minimize_weak"], DEFAULTS["search"]["refine_minimize_weak"]
-    uncertified_s = {(r["scene"], r["start"]) for r in runs(s) if r["stage"] == "screen" and r["T_f"] is None}
-    for r in runs(s):
-        refined_screen = r["stage"] == "refine" and (r["scene"], r["start"]) not in uncertified_s
-        want = refine_weak if refined_screen else own_weak
-        check(r["schedule"]["minimize_weak"] == want,
-              f"{r['scene']} {r['stage']} {r['start']}: minimize_weak {r['schedule']['minimize_weak']}, want {want}")
+
+    def uncertified_screens(out):
+        return {(r["scene"], r["start"]) for r in runs(out) if r["stage"] == "screen" and r["T_f"] is None}
+
+    def check_minimize_weak(out, name):
+        uncertified_here = uncertified_screens(out)
+        for r in runs(out):
+            refined_screen = r["stage"] == "refine" and (r["scene"], r["start"]) not in uncertified_here
+            want = refine_weak if refined_screen else own_weak
+            check(r["schedule"]["minimize_weak"] == want,
+                  f"{name}: {r['scene']} {r['stage']} {r['start']}: minimize_weak "
+                  f"{r['schedule']['minimize_weak']}, want {want}")
+    check_minimize_weak(s, "screen")
     check(any(r["schedule"]["minimize_weak"] == refine_weak for r in from_screen.values()),
           "a refine from its screen ran")
     both = [r for r in runs(o) if r["stage"] == "refine"]
     check(sorted((r["scene"], r["start"]) for r in both) == sorted(from_screen),
           "the same refines as from the screen")
-    uncertified = {(r["scene"], r["start"]) for r in runs(o) if r["stage"] == "screen" and r["T_f"] is None}
-    for r in runs(o):
-        refined_screen = r["stage"] == "refine" and (r["scene"], r["start"]) not in uncertified
-        want = refine_weak if refined_screen else own_weak
-        check(r["schedule"]["minimize_weak"] == want,
-              f"both: {r['scene']} {r['stage']} {r['start']}: minimize_weak {r['schedule']['minimize_weak']}, want {want}")
+    uncertified = uncertified_screens(o)
+    check_minimize_weak(o, "both")
     # A refine's run from its start's own guess minimises as search.refine_minimize_weak says:
     # the full run of a search without screening with reduction.minimize_weak set so.
     if refine_weak == own_weak:
