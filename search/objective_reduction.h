@@ -120,8 +120,9 @@
 //   (push_coin start 1: not tight at any zeta from 1 to 1e5, measured without the limit).
 //   reduction.minimize_weak homotopy: that weak attempt runs the relaxation homotopy of
 //   formulation relaxed on the lumped row (ElasticRequest::relaxation: sigma from elastic.sigma
-//   down, each stage ended on the barrier path, its zeta raised only while the relaxation has
-//   never held, then polish) instead of the penalty loop's raises to tight; its fallback runs
+//   down, each stage ended on the barrier path, its zeta raised while the relaxation has never
+//   held or where it stops holding too far from the corner for polish, then polish) instead of
+//   the penalty loop's raises to tight; its fallback runs
 //   as always. Paper B1 start 1's minimisation: 337 iterations to 9.786586 against 1,449 to
 //   9.771682 (search/README.md, "Why the defaults").
 // Fixed steps and zeta. A fixed step (and a probe) fixes J, so J is constant on its feasible

@@ -9,6 +9,11 @@
 #include "core/util/numbers.h"
 
 namespace disco {
+namespace {
+// An elastic point is polished only when its complementarity is below this: farther from the
+// corner, fixing the smaller side of every pair rarely leaves a feasible branch.
+constexpr double kPolishBelow = 1e-2;
+}  // namespace
 
 std::string to_string(MpccStatus s) {
   switch (s) {
@@ -325,12 +330,15 @@ bool ElasticSolver::relaxation_homotopy(ElasticNlp& nlp, NlpPoint start, double 
     if (out.certificate.max_complementarity <= settings_.complementarity_tol) return finish(true);
     if (r.point.z[eps] > sigma) {
       // The relaxation does not hold (the penalty prefers eps > 0). Once it has held, the
-      // homotopy ends here: its multiplier grows like 1/sqrt(sigma) and polish takes over
-      // (raising zeta at every sigma was measured: paper B2 start 0 took 4,417 iterations
-      // instead of 1,672). If it never held, zeta is too weak for any relaxation: raise it
-      // as the penalty loop does (same stall rule, same zeta_max).
+      // homotopy ends here if polish can take over (complementarity below kPolishBelow): its
+      // multiplier grows like 1/sqrt(sigma) (raising zeta at every sigma was measured: paper
+      // B2 start 0 took 4,417 iterations instead of 1,672). If it never held, zeta is too
+      // weak for any relaxation, and if it stopped holding too far from complementarity for
+      // polish, the homotopy would end unpolished, not tight: raise zeta as the penalty loop
+      // does (same stall rule, same limit) and solve this sigma again.
       // With the objective fixed, eps's minimiser does not depend on zeta: no raise either.
-      if (held || request.objective_fixed ||
+      const bool polishable = out.certificate.max_complementarity < kPolishBelow;
+      if ((held && polishable) || request.objective_fixed ||
           !raise_zeta(request, out.certificate.max_complementarity, previous_residual, zeta))
         return finish(true);
       continue;
@@ -387,7 +395,7 @@ MpccResult ElasticSolver::run(const Mpcc& mpcc, NlpPoint start, double zeta,
                            out.status == MpccStatus::kSolved &&
                            out.certificate.max_complementarity <= settings_.polish_fixed_above;
   const bool worth_polishing =
-      converged && out.certificate.max_complementarity < 1e-2 && !certified_as_is;
+      converged && out.certificate.max_complementarity < kPolishBelow && !certified_as_is;
   if (settings_.polish && worth_polishing && !past(request)) {
     const MpccResult before = out;
     const Vector& x = out.elastic_point.z;

@@ -25,8 +25,10 @@
 //   solve is a short, regular one and none crawls at the complementarity corner. The
 //   homotopy ends when complementarity is tight, or where the relaxation stops holding
 //   (eps > sigma: the penalty prefers to violate it, as below the MPCC's optimal horizon).
-//   Only while it has not held at the first sigma is zeta raised (as in step 2: same stall
-//   rule, same zeta_max). Polish (step 3) then fixes the branch; the certificate decides.
+//   zeta is raised (as in step 2: same stall rule, same limit) while the relaxation has not yet
+//   held, and where it stops holding at a point too far from complementarity for polish
+//   (1e-2; the same sigma is then solved again). Polish (step 3) then fixes the branch; the
+//   certificate decides.
 //   With formulation kBarrier (a relaxation row per pair), steps 1-2 are the penalty loop of
 //   steps 1-2 with the relaxation inside each Ipopt run (after Raghunathan & Biegler's IPOPT-C and Leyffer, Lopez-Calva &
 //   Nocedal, where the relaxation moves with the barrier parameter): at every iteration
