@@ -10,8 +10,8 @@
 
 namespace disco {
 namespace {
-// An elastic point is polished only when its complementarity is below this: farther from the
-// corner, fixing the smaller side of every pair rarely leaves a feasible branch.
+// An elastic point is polished only when its complementarity is below this (run(), step 3);
+// the relaxation homotopy goes on raising zeta above it (relaxation_homotopy).
 constexpr double kPolishBelow = 1e-2;
 }  // namespace
 
