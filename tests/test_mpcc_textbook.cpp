@@ -949,6 +949,31 @@ void expect_unwatched_without_flag(IpoptSolver& ipopt, const PolynomialProgram& 
   EXPECT_EQ(rule.nlp_solves, rule_off.nlp_solves);
 }
 
+// The never-tight problem above (fixed_objective_problem(false)) solved under `request` with
+// a rule's settings `s` (cut) and without it (`never`: full).
+struct CutAndFull {
+  MpccResult cut, full;
+};
+CutAndFull solve_with_and_without(IpoptSolver& ipopt, const ElasticSettings& s,
+                                  const ElasticSettings& never, const ElasticRequest& request) {
+  const PolynomialProgram p = fixed_objective_problem(false);
+  return {ElasticSolver(ipopt, s).solve(p, p.initial_point(), request),
+          ElasticSolver(ipopt, never).solve(p, p.initial_point(), request)};
+}
+// Both end not tight; the rule cut the lumped solve (stagnated, in fewer iterations) and left
+// the other formulations' runs (per pair: no eps; relaxed: its own homotopy) as they were.
+void expect_cut_if_lumped(ElasticFormulation form, const CutAndFull& r) {
+  SCOPED_TRACE("with the rule: " + describe(r.cut) + "\nwithout: " + describe(r.full));
+  EXPECT_EQ(r.cut.status, MpccStatus::kElasticNotTight);
+  EXPECT_EQ(r.full.status, MpccStatus::kElasticNotTight);
+  if (form == ElasticFormulation::kLumped) {
+    EXPECT_EQ(r.cut.outcome, NlpOutcome::kStagnated);
+    EXPECT_LT(r.cut.iterations, r.full.iterations);
+  } else {
+    expect_same_run(r.cut, r.full);
+  }
+}
+
 // ElasticSettings::Stagnation: a fixed step's eps that stopped falling far from tight ends the
 // solve (lumped and barrier formulations, which have an eps). On the problem above that cannot
 // be tight (eps = x y >= 1), a rule that looks from iteration 1 at windows of one iteration
@@ -1001,24 +1026,40 @@ TEST_P(MpccFixedObjective, AFeasibilityPhasesStagnantEpsEndsItNotTight) {
   IpoptSolver ipopt(disco_yaml_ipopt_settings());
   ElasticRequest feasibility;
   feasibility.feasibility = true;
-  const MpccResult cut = ElasticSolver(ipopt, s).solve(p, p.initial_point(), feasibility);
-  const MpccResult full = ElasticSolver(ipopt, never).solve(p, p.initial_point(), feasibility);
-  SCOPED_TRACE("watched: " + describe(cut) + "\nwithout: " + describe(full));
-  EXPECT_EQ(cut.status, MpccStatus::kElasticNotTight);
-  EXPECT_EQ(full.status, MpccStatus::kElasticNotTight);
-  EXPECT_GE(cut.certificate.max_complementarity, 1.0 - 1e-9);
+  const CutAndFull r = solve_with_and_without(ipopt, s, never, feasibility);
+  expect_cut_if_lumped(form, r);
+  EXPECT_GE(r.cut.certificate.max_complementarity, 1.0 - 1e-9);
   if (form == ElasticFormulation::kLumped) {
-    EXPECT_EQ(cut.outcome, NlpOutcome::kStagnated);
-    EXPECT_EQ(cut.nlp_solves, 1);  // no zeta raise after a stagnant solve
-    EXPECT_DOUBLE_EQ(cut.zeta, s.zeta);
-    EXPECT_GE(full.nlp_solves, 2);  // unwatched, the zeta rule raises
-    EXPECT_LT(cut.iterations, full.iterations);
-    EXPECT_FALSE(cut.stalled);  // not a minimisation's stall
-  } else {
-    expect_same_run(cut, full);
+    EXPECT_EQ(r.cut.nlp_solves, 1);  // no zeta raise after a stagnant solve
+    EXPECT_DOUBLE_EQ(r.cut.zeta, s.zeta);
+    EXPECT_GE(r.full.nlp_solves, 2);  // unwatched, the zeta rule raises
+    EXPECT_FALSE(r.cut.stalled);      // not a minimisation's stall
   }
   // The same settings without the flag: not watched.
   expect_unwatched_without_flag(ipopt, p, s, never);
+}
+
+// ElasticSettings::Stagnation::late: the second rule watches fixed steps alone. With the first
+// rule off (after 0) and a late rule that looks from iteration 1 at windows of one iteration, a
+// fixed step on the problem above (never tight) is cut as by the first rule; a feasibility
+// phase (not watched: feasibility_after 0) and a request without either flag solve as with no
+// rule at all.
+TEST_P(MpccFixedObjective, TheLateRuleWatchesFixedStepsAlone) {
+  const auto [form, polish] = GetParam();
+  ElasticSettings s = settings_for(form, polish);
+  s.stagnation = {.after = 0, .window = 1, .level = 0.5, .decrease = 0.2, .feasibility_after = 0};
+  s.stagnation.late = {.after = 1, .window = 1, .level = 0.5, .decrease = 0.2};
+  ElasticSettings never = s;
+  never.stagnation.late.after = 0;
+  IpoptSolver ipopt(disco_yaml_ipopt_settings());
+  ElasticRequest fixed;
+  fixed.objective_fixed = true;
+  expect_cut_if_lumped(form, solve_with_and_without(ipopt, s, never, fixed));
+  ElasticRequest feasibility;
+  feasibility.feasibility = true;
+  const CutAndFull unwatched = solve_with_and_without(ipopt, s, never, feasibility);
+  expect_same_run(unwatched.cut, unwatched.full);
+  expect_unwatched_without_flag(ipopt, fixed_objective_problem(false), s, never);
 }
 
 INSTANTIATE_TEST_SUITE_P(Textbook, MpccFixedObjective, all_form_polish(), form_polish_name);
@@ -1039,6 +1080,25 @@ TEST(ElasticStagnation, StopsOnlyAStagnantEpsAboveTheLevelPastTheFirstIterations
   EXPECT_FALSE((ElasticSettings::Stagnation{.after = 0, .window = 2, .level = 0.1, .decrease = 0.2})
                    .stagnated(40, std::vector<double>(40, 3.0)))
       << "after = 0: never";
+}
+
+// The late rule, beside the first: it watches from its own `after`, at its own level, so a
+// plateau below the first rule's level is stagnant by it alone, and only from late.after on.
+TEST(ElasticStagnation, TheLateRuleStopsALowPlateauFromItsOwnIteration) {
+  ElasticSettings::Stagnation rule{.after = 4, .window = 2, .level = 0.1, .decrease = 0.2};
+  rule.late = {.after = 6, .window = 3, .level = 1e-3, .decrease = 0.1};
+  const std::vector<double> low(7, 0.05);  // below 0.1, above 1e-3, flat
+  EXPECT_FALSE((ElasticSettings::Stagnation{.after = 4, .window = 2, .level = 0.1, .decrease = 0.2})
+                   .stagnated(6, low))
+      << "the first rule alone: below its level";
+  EXPECT_TRUE(rule.stagnated(6, low));
+  EXPECT_FALSE(rule.stagnated(5, std::vector<double>(6, 0.05))) << "not before late.after";
+  // The least of the last 3 against the least of the 3 before: 0.046 vs 0.05 is a fall by 8 %
+  // (< 10 %), stagnant; 0.044 vs 0.05 by 12 %, still falling.
+  EXPECT_TRUE(rule.stagnated(6, {0.9, 0.05, 0.05, 0.05, 0.046, 0.047, 0.048}));
+  EXPECT_FALSE(rule.stagnated(6, {0.9, 0.05, 0.05, 0.05, 0.044, 0.047, 0.048}));
+  EXPECT_FALSE(rule.stagnated(6, std::vector<double>(7, 5e-4))) << "below late.level";
+  EXPECT_TRUE(rule.stagnated(6, std::vector<double>(7, 3.0))) << "the first rule still stops";
 }
 
 // ElasticSettings::Stall, on (iteration, objective) of settled iterates, the last at `iteration`.

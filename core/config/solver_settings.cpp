@@ -173,6 +173,10 @@ ElasticSettings elastic_settings(const Settings& s) {
   e.stagnation.level = positive(s, "elastic.stagnation.level");
   e.stagnation.decrease = below_one(s, "elastic.stagnation.decrease");
   e.stagnation.feasibility_after = integer_at_least(s, "elastic.stagnation.feasibility_after", 0);
+  e.stagnation.late.after = integer_at_least(s, "elastic.stagnation.late.after", 0);
+  e.stagnation.late.window = integer_at_least(s, "elastic.stagnation.late.window", 1);
+  e.stagnation.late.level = positive(s, "elastic.stagnation.late.level");
+  e.stagnation.late.decrease = below_one(s, "elastic.stagnation.late.decrease");
   e.stall.after = integer_at_least(s, "elastic.stall.after", 0);
   e.stall.window = integer_at_least(s, "elastic.stall.window", 1);
   e.stall.decrease = below_one(s, "elastic.stall.decrease");

@@ -188,12 +188,18 @@ MpccResult ElasticSolver::solve_branch(const Mpcc& mpcc, const MpccResult& from,
   return out;
 }
 
-bool ElasticSettings::Stagnation::stagnated(int iteration, const std::vector<double>& eps) const {
+bool ElasticSettings::Stagnation::Rule::stagnated(int iteration,
+                                                  const std::vector<double>& eps) const {
   const int n = static_cast<int>(eps.size());
   if (after <= 0 || iteration < after || n < 2 * window) return false;
   const double last = *std::min_element(eps.end() - window, eps.end());
   const double before = *std::min_element(eps.end() - 2 * window, eps.end() - window);
   return last > level && last > (1.0 - decrease) * before;
+}
+
+bool ElasticSettings::Stagnation::stagnated(int iteration, const std::vector<double>& eps) const {
+  return Rule{after, window, level, decrease}.stagnated(iteration, eps) ||
+         late.stagnated(iteration, eps);
 }
 
 bool ElasticSettings::Stall::stalled(int iteration,
@@ -229,9 +235,11 @@ bool ElasticSolver::penalty_loop(ElasticNlp& nlp, NlpPoint start, double zeta,
   // The stagnation rule of this request: a fixed step's, or a feasibility phase's, which
   // watches from feasibility_after on (ElasticSettings::Stagnation; after 0: not watched).
   ElasticSettings::Stagnation stagnation = settings_.stagnation;
-  if (!request.objective_fixed)
+  if (!request.objective_fixed) {
     stagnation.after = request.feasibility ? stagnation.feasibility_after : 0;
-  if (stagnation.after > 0 && nlp.eps_index() >= 0) {
+    stagnation.late.after = 0;  // the late rule watches fixed steps alone
+  }
+  if ((stagnation.after > 0 || stagnation.late.after > 0) && nlp.eps_index() >= 0) {
     // eps of each regular Ipopt iteration of the current solve.
     solve_limits.watch = NlpLimits::Watch{
         nlp.eps_index(), [stagnation, eps = std::vector<double>()](

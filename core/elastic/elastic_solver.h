@@ -129,14 +129,29 @@ struct ElasticSettings {
   // stagnant eps ends it the same way, not tight, without the zeta rule's raises (from a
   // stagnant, unconverged point they stagnate again). Later than `after`: from a guess eps can
   // sit on a plateau above `level` for a while and then fall to 0.
+  // A fixed step is also watched by a second, late rule of the same form (`late`: from
+  // iteration late.after on, windows of late.window, eps above late.level, fallen by less
+  // than late.decrease): a step whose eps settles just above 0, below `level`, can take a
+  // thousand iterations to converge not tight (core/README.md, "The elastic mode").
   struct Stagnation {
+    // One rule: from iteration `after` on (0: never), the least eps of the last `window`
+    // iterations above `level` and less than the fraction `decrease` below the least of the
+    // `window` iterations before those.
+    struct Rule {
+      int after = 0;
+      int window = 0;
+      double level = 0.0;
+      double decrease = 0.0;
+      bool stagnated(int iteration, const std::vector<double>& eps) const;
+    };
     int after = 0;
     int window = 0;
     double level = 0.0;
     double decrease = 0.0;
     int feasibility_after = 0;
+    Rule late;  // fixed steps only (ElasticRequest::objective_fixed)
     // Whether eps, given the values of consecutive Ipopt iterations (the last at `iteration`),
-    // has stagnated (from iteration `after` on).
+    // has stagnated by the first rule (from iteration `after` on) or by `late`.
     bool stagnated(int iteration, const std::vector<double>& eps) const;
   };
   Stagnation stagnation;
