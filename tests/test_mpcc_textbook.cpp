@@ -983,14 +983,14 @@ void expect_cut_if_lumped(ElasticFormulation form, const CutAndFull& r) {
 TEST_P(MpccFixedObjective, AStagnantEpsEndsANotTightSolveEarly) {
   const auto [form, polish] = GetParam();
   ElasticSettings s = settings_for(form, polish);
-  s.stagnation = {.after = 1, .window = 1, .level = 0.5, .decrease = 0.2};
+  s.stagnation.first = {.after = 1, .window = 1, .level = 0.5, .decrease = 0.2};
   const ElasticSettings off = settings_for(form, polish);
   const PolynomialProgram p = fixed_objective_problem(false);
   IpoptSolver ipopt(disco_yaml_ipopt_settings());
   ElasticRequest fixed;
   fixed.objective_fixed = true;
   ElasticSettings never = off;
-  never.stagnation.after = 0;
+  never.stagnation.first.after = 0;
   const MpccResult cut = ElasticSolver(ipopt, s).solve(p, p.initial_point(), fixed);
   const MpccResult full = ElasticSolver(ipopt, never).solve(p, p.initial_point(), fixed);
   SCOPED_TRACE("stagnation: " + describe(cut) + "\nwithout: " + describe(full));
@@ -1018,8 +1018,8 @@ TEST_P(MpccFixedObjective, AStagnantEpsEndsANotTightSolveEarly) {
 TEST_P(MpccFixedObjective, AFeasibilityPhasesStagnantEpsEndsItNotTight) {
   const auto [form, polish] = GetParam();
   ElasticSettings s = settings_for(form, polish);
-  s.stagnation = {
-      .after = 0, .window = 1, .level = 0.5, .decrease = 0.2, .feasibility_after = 1};
+  s.stagnation = {.first = {.after = 0, .window = 1, .level = 0.5, .decrease = 0.2},
+                  .feasibility_after = 1};
   ElasticSettings never = s;
   never.stagnation.feasibility_after = 0;
   const PolynomialProgram p = fixed_objective_problem(false);
@@ -1047,7 +1047,8 @@ TEST_P(MpccFixedObjective, AFeasibilityPhasesStagnantEpsEndsItNotTight) {
 TEST_P(MpccFixedObjective, TheLateRuleWatchesFixedStepsAlone) {
   const auto [form, polish] = GetParam();
   ElasticSettings s = settings_for(form, polish);
-  s.stagnation = {.after = 0, .window = 1, .level = 0.5, .decrease = 0.2, .feasibility_after = 0};
+  s.stagnation = {.first = {.after = 0, .window = 1, .level = 0.5, .decrease = 0.2},
+                  .feasibility_after = 0};
   s.stagnation.late = {.after = 1, .window = 1, .level = 0.5, .decrease = 0.2};
   ElasticSettings never = s;
   never.stagnation.late.after = 0;
@@ -1066,7 +1067,8 @@ INSTANTIATE_TEST_SUITE_P(Textbook, MpccFixedObjective, all_form_polish(), form_p
 
 // The rule itself, on sequences of eps (one value per Ipopt iteration, the last at `iteration`).
 TEST(ElasticStagnation, StopsOnlyAStagnantEpsAboveTheLevelPastTheFirstIterations) {
-  const ElasticSettings::Stagnation rule{.after = 4, .window = 2, .level = 0.1, .decrease = 0.2};
+  const ElasticSettings::Stagnation rule{
+      .first = {.after = 4, .window = 2, .level = 0.1, .decrease = 0.2}};
   const std::vector<double> flat{3.0, 3.0, 3.0, 3.0, 3.0};
   EXPECT_TRUE(rule.stagnated(4, flat));
   EXPECT_FALSE(rule.stagnated(3, flat)) << "not before iteration `after`";
@@ -1077,7 +1079,8 @@ TEST(ElasticStagnation, StopsOnlyAStagnantEpsAboveTheLevelPastTheFirstIterations
   EXPECT_FALSE(rule.stagnated(4, {9.0, 3.0, 3.1, 2.3, 2.6}));
   EXPECT_TRUE(rule.stagnated(4, {9.0, 3.0, 3.1, 4.0, 5.0})) << "a rising eps is stagnant";
   EXPECT_FALSE(rule.stagnated(4, {0.09, 0.09, 0.09, 0.09, 0.09})) << "below the level: may still close";
-  EXPECT_FALSE((ElasticSettings::Stagnation{.after = 0, .window = 2, .level = 0.1, .decrease = 0.2})
+  EXPECT_FALSE((ElasticSettings::Stagnation{
+                   .first = {.after = 0, .window = 2, .level = 0.1, .decrease = 0.2}})
                    .stagnated(40, std::vector<double>(40, 3.0)))
       << "after = 0: never";
 }
@@ -1085,10 +1088,12 @@ TEST(ElasticStagnation, StopsOnlyAStagnantEpsAboveTheLevelPastTheFirstIterations
 // The late rule, beside the first: it watches from its own `after`, at its own level, so a
 // plateau below the first rule's level is stagnant by it alone, and only from late.after on.
 TEST(ElasticStagnation, TheLateRuleStopsALowPlateauFromItsOwnIteration) {
-  ElasticSettings::Stagnation rule{.after = 4, .window = 2, .level = 0.1, .decrease = 0.2};
+  ElasticSettings::Stagnation rule{
+      .first = {.after = 4, .window = 2, .level = 0.1, .decrease = 0.2}};
   rule.late = {.after = 6, .window = 3, .level = 1e-3, .decrease = 0.1};
   const std::vector<double> low(7, 0.05);  // below 0.1, above 1e-3, flat
-  EXPECT_FALSE((ElasticSettings::Stagnation{.after = 4, .window = 2, .level = 0.1, .decrease = 0.2})
+  EXPECT_FALSE((ElasticSettings::Stagnation{
+                   .first = {.after = 4, .window = 2, .level = 0.1, .decrease = 0.2}})
                    .stagnated(6, low))
       << "the first rule alone: below its level";
   EXPECT_TRUE(rule.stagnated(6, low));

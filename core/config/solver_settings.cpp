@@ -168,10 +168,10 @@ ElasticSettings elastic_settings(const Settings& s) {
   e.barrier_sigma_exponent = positive(s, "elastic.barrier_sigma_exponent");
   e.barrier_monotone_mu =
       choice<bool>(s, "elastic.barrier_mu", {{"monotone", true}, {"adaptive", false}});
-  e.stagnation.after = integer_at_least(s, "elastic.stagnation.after", 0);
-  e.stagnation.window = integer_at_least(s, "elastic.stagnation.window", 1);
-  e.stagnation.level = positive(s, "elastic.stagnation.level");
-  e.stagnation.decrease = below_one(s, "elastic.stagnation.decrease");
+  e.stagnation.first.after = integer_at_least(s, "elastic.stagnation.after", 0);
+  e.stagnation.first.window = integer_at_least(s, "elastic.stagnation.window", 1);
+  e.stagnation.first.level = positive(s, "elastic.stagnation.level");
+  e.stagnation.first.decrease = below_one(s, "elastic.stagnation.decrease");
   e.stagnation.feasibility_after = integer_at_least(s, "elastic.stagnation.feasibility_after", 0);
   e.stagnation.late.after = integer_at_least(s, "elastic.stagnation.late.after", 0);
   e.stagnation.late.window = integer_at_least(s, "elastic.stagnation.late.window", 1);

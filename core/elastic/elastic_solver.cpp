@@ -198,8 +198,7 @@ bool ElasticSettings::Stagnation::Rule::stagnated(int iteration,
 }
 
 bool ElasticSettings::Stagnation::stagnated(int iteration, const std::vector<double>& eps) const {
-  return Rule{after, window, level, decrease}.stagnated(iteration, eps) ||
-         late.stagnated(iteration, eps);
+  return first.stagnated(iteration, eps) || late.stagnated(iteration, eps);
 }
 
 bool ElasticSettings::Stall::stalled(int iteration,
@@ -236,10 +235,10 @@ bool ElasticSolver::penalty_loop(ElasticNlp& nlp, NlpPoint start, double zeta,
   // watches from feasibility_after on (ElasticSettings::Stagnation; after 0: not watched).
   ElasticSettings::Stagnation stagnation = settings_.stagnation;
   if (!request.objective_fixed) {
-    stagnation.after = request.feasibility ? stagnation.feasibility_after : 0;
+    stagnation.first.after = request.feasibility ? stagnation.feasibility_after : 0;
     stagnation.late.after = 0;  // the late rule watches fixed steps alone
   }
-  if ((stagnation.after > 0 || stagnation.late.after > 0) && nlp.eps_index() >= 0) {
+  if ((stagnation.first.after > 0 || stagnation.late.after > 0) && nlp.eps_index() >= 0) {
     // eps of each regular Ipopt iteration of the current solve.
     solve_limits.watch = NlpLimits::Watch{
         nlp.eps_index(), [stagnation, eps = std::vector<double>()](

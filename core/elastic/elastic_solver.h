@@ -120,18 +120,19 @@ struct ElasticSettings {
   // A solve with the objective fixed (ElasticRequest::objective_fixed) minimises eps alone;
   // one whose eps has stopped falling far from tight would end not tight, and only after
   // many more iterations. It ends there (NlpOutcome::kStagnated, kElasticNotTight as at
-  // convergence; polish is tried as then): from Ipopt iteration `after` on (0: never), when the
-  // least eps of the last `window` iterations is above `level` and less than the fraction
-  // `decrease` below the least eps of the `window` iterations before those. Lumped and
-  // barrier formulations (penalty loop); eps in the model's scaled units.
+  // convergence; polish is tried as then) by the rule `first`: from Ipopt iteration
+  // first.after on (0: never), when the least eps of the last first.window iterations is
+  // above first.level and less than the fraction first.decrease below the least eps of the
+  // first.window iterations before those. Lumped and barrier formulations (penalty loop); eps
+  // in the model's scaled units.
   // A feasibility phase (ElasticRequest::feasibility) minimises eps alone too, from a guess:
   // the same rule watches it from Ipopt iteration `feasibility_after` on (0: never), and a
   // stagnant eps ends it the same way, not tight, without the zeta rule's raises (from a
-  // stagnant, unconverged point they stagnate again). Later than `after`: from a guess eps can
-  // sit on a plateau above `level` for a while and then fall to 0.
+  // stagnant, unconverged point they stagnate again). Later than first.after: from a guess eps
+  // can sit on a plateau above first.level for a while and then fall to 0.
   // A fixed step is also watched by a second, late rule of the same form (`late`: from
   // iteration late.after on, windows of late.window, eps above late.level, fallen by less
-  // than late.decrease): a step whose eps settles just above 0, below `level`, can take a
+  // than late.decrease): a step whose eps settles just above 0, below first.level, can take a
   // thousand iterations to converge not tight (core/README.md, "The elastic mode").
   struct Stagnation {
     // One rule: from iteration `after` on (0: never), the least eps of the last `window`
@@ -144,14 +145,11 @@ struct ElasticSettings {
       double decrease = 0.0;
       bool stagnated(int iteration, const std::vector<double>& eps) const;
     };
-    int after = 0;
-    int window = 0;
-    double level = 0.0;
-    double decrease = 0.0;
+    Rule first;  // fixed steps; feasibility phases with `after` = feasibility_after
     int feasibility_after = 0;
     Rule late;  // fixed steps only (ElasticRequest::objective_fixed)
     // Whether eps, given the values of consecutive Ipopt iterations (the last at `iteration`),
-    // has stagnated by the first rule (from iteration `after` on) or by `late`.
+    // has stagnated by `first` or by `late`.
     bool stagnated(int iteration, const std::vector<double>& eps) const;
   };
   Stagnation stagnation;
