@@ -254,6 +254,14 @@ TEST(Settings, TheSectionReadersRefuseValuesOutOfRange) {
       {"elastic.barrier_sigma_exponent=-1", "elastic.barrier_sigma_exponent", "must be positive", false},
       {"elastic.barrier_mu=fast", "elastic.barrier_mu", "must be 'monotone' or 'adaptive', got 'fast'", false},
       {"elastic.polish_fixed_above=-1e-8", "elastic.polish_fixed_above", "must be >= 0", false},
+      {"elastic.stagnation.after=-1", "elastic.stagnation.after", "must be >= 0", false},
+      {"elastic.stagnation.window=0", "elastic.stagnation.window", "must be >= 1", false},
+      {"elastic.stagnation.level=0", "elastic.stagnation.level", "must be positive", false},
+      {"elastic.stagnation.decrease=1", "elastic.stagnation.decrease", "must be below 1", false},
+      {"elastic.stagnation.late.after=-1", "elastic.stagnation.late.after", "must be >= 0", false},
+      {"elastic.stagnation.late.window=0", "elastic.stagnation.late.window", "must be >= 1", false},
+      {"elastic.stagnation.late.level=-1", "elastic.stagnation.late.level", "must be positive", false},
+      {"elastic.stagnation.late.decrease=2", "elastic.stagnation.late.decrease", "must be below 1", false},
       {"feasibility.horizon_min=0", "feasibility.horizon_min", "must be positive", true},
       {"reduction.rate=1", "reduction.rate", "must be below 1", true},
       {"reduction.shrink=1.5", "reduction.shrink", "must be below 1", true},
@@ -285,6 +293,28 @@ TEST(Settings, TheSectionReadersRefuseValuesOutOfRange) {
   expect_prefix(error_of([&] { reduction_settings(Settings::load(file)); }),
                 file + ":3: key 'feasibility.horizon_min': ", "must be positive");
   std::filesystem::remove(file);
+}
+
+// ElasticSettings::Stagnation's two rules each read their own four keys.
+TEST(Settings, TheStagnationRulesReadTheirOwnKeys) {
+  Settings s = Settings::load(default_settings_path());
+  for (const char* assignment :
+       {"elastic.stagnation.after=11", "elastic.stagnation.window=12",
+        "elastic.stagnation.level=0.25", "elastic.stagnation.decrease=0.125",
+        "elastic.stagnation.late.after=21", "elastic.stagnation.late.window=22",
+        "elastic.stagnation.late.level=0.5", "elastic.stagnation.late.decrease=0.375",
+        "elastic.stagnation.feasibility_after=31"})
+    s.apply_override(assignment);
+  const ElasticSettings::Stagnation st = elastic_settings(s).stagnation;
+  EXPECT_EQ(st.first.after, 11);
+  EXPECT_EQ(st.first.window, 12);
+  EXPECT_EQ(st.first.level, 0.25);
+  EXPECT_EQ(st.first.decrease, 0.125);
+  EXPECT_EQ(st.late.after, 21);
+  EXPECT_EQ(st.late.window, 22);
+  EXPECT_EQ(st.late.level, 0.5);
+  EXPECT_EQ(st.late.decrease, 0.375);
+  EXPECT_EQ(st.feasibility_after, 31);
 }
 
 // reduction.minimize_weak homotopy relaxes the lumped row and ends by polish: with another

@@ -57,6 +57,17 @@ double non_negative(const Settings& s, const std::string& key) {
   return v;
 }
 
+// One rule of ElasticSettings::Stagnation: the keys after, window, level and decrease under
+// `prefix` (which ends with a dot).
+ElasticSettings::Stagnation::Rule stagnation_rule(const Settings& s, const std::string& prefix) {
+  ElasticSettings::Stagnation::Rule r;
+  r.after = integer_at_least(s, prefix + "after", 0);
+  r.window = integer_at_least(s, prefix + "window", 1);
+  r.level = positive(s, prefix + "level");
+  r.decrease = below_one(s, prefix + "decrease");
+  return r;
+}
+
 }  // namespace
 
 std::vector<IpoptOption> ipopt_options(const Settings& settings) {
@@ -168,15 +179,9 @@ ElasticSettings elastic_settings(const Settings& s) {
   e.barrier_sigma_exponent = positive(s, "elastic.barrier_sigma_exponent");
   e.barrier_monotone_mu =
       choice<bool>(s, "elastic.barrier_mu", {{"monotone", true}, {"adaptive", false}});
-  e.stagnation.first.after = integer_at_least(s, "elastic.stagnation.after", 0);
-  e.stagnation.first.window = integer_at_least(s, "elastic.stagnation.window", 1);
-  e.stagnation.first.level = positive(s, "elastic.stagnation.level");
-  e.stagnation.first.decrease = below_one(s, "elastic.stagnation.decrease");
+  e.stagnation.first = stagnation_rule(s, "elastic.stagnation.");
   e.stagnation.feasibility_after = integer_at_least(s, "elastic.stagnation.feasibility_after", 0);
-  e.stagnation.late.after = integer_at_least(s, "elastic.stagnation.late.after", 0);
-  e.stagnation.late.window = integer_at_least(s, "elastic.stagnation.late.window", 1);
-  e.stagnation.late.level = positive(s, "elastic.stagnation.late.level");
-  e.stagnation.late.decrease = below_one(s, "elastic.stagnation.late.decrease");
+  e.stagnation.late = stagnation_rule(s, "elastic.stagnation.late.");
   e.stall.after = integer_at_least(s, "elastic.stall.after", 0);
   e.stall.window = integer_at_least(s, "elastic.stall.window", 1);
   e.stall.decrease = below_one(s, "elastic.stall.decrease");
