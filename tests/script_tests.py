@@ -24,7 +24,9 @@ results  with a real disco: scripts/bench_stress and scripts/bench_examples on o
          against disco itself (the files, the rows against the solution files, the summary).
          scripts/bench_starts --others on a refused and a small stress scene, 2 at a time
          against disco itself: refused rows, the same iterations and T_f as one at a time and
-         as the baseline (a start is deterministic), and the tables' note on wall times.
+         as the baseline (a start is deterministic), and the tables' note on wall times; a
+         baseline that cannot run (no settings file) stops it with the command and its error,
+         and a run whose every start is refused prints its ratios as "—".
 """
 import argparse
 import json
@@ -292,6 +294,25 @@ def test_bench_starts(disco):
           and "not a speed measurement" in text, "with --jobs 2 the tables say the wall is not comparable")
     check("Starts worse than the baseline by more than 1e-3 relative: 0 of 4" in text,
           "against itself, no start worse")
+    # A baseline that cannot run (a copy of disco outside its tree: no settings file under its
+    # prefix, exit 2 like a refused scene) stops the run, naming the command and its error;
+    # its starts are not taken for refused scenes.
+    lost = os.path.join(WORK, "lost", "bin")
+    os.makedirs(lost, exist_ok=True)
+    copy = shutil.copy(disco, os.path.join(lost, "disco"))
+    r = run_script("bench_starts", "--disco", disco, "--others", "--scenes", "stress/too_weak",
+                   "--starts", "0", "--baseline", copy, "--out", os.path.join(WORK, "starts_lost"),
+                   "--no-results")
+    check(r.returncode == 1 and copy in r.stderr and "no settings file" in r.stderr
+          and "Traceback" not in r.stderr,
+          f"a baseline without settings stops bench_starts with its command and error ({r.returncode}: "
+          f"{r.stderr[-600:]})")
+    # Every start refused on both sides: the ratios are "—", not a division by zero.
+    r = run_script("bench_starts", "--disco", disco, "--others", "--scenes", "stress/too_weak",
+                   "--starts", "0", "--baseline", disco, "--out", os.path.join(WORK, "starts_refused"),
+                   "--no-results")
+    check(r.returncode == 0 and "iterations —" in r.stdout,
+          f"every start refused: the ratios are '—' ({r.returncode}: {r.stderr[-600:]})")
 
 
 def test_random(disco):
