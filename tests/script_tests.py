@@ -21,7 +21,8 @@ results  with a real disco: scripts/bench_stress and scripts/bench_examples on o
          of known inertia written here, [H Jᵀ; J 0] with H positive definite, and on a truncated
          one; and scripts/bench_kkt on start 0 of A2 (a corpus it dumps with disco).
          scripts/bench_random: its generator (seeded, --kind objects), and a run of 2 scenes
-         against disco itself (the files, the rows against the solution files, the summary).
+         against disco itself (the files, the rows against the solution files, the summary);
+         a baseline that cannot run (no settings file) stops it with the command and its error.
          scripts/bench_starts --others on a refused and a small stress scene, 2 at a time
          against disco itself: refused rows, the same iterations and T_f as one at a time and
          as the baseline (a start is deterministic), and the tables' note on wall times; a
@@ -258,6 +259,14 @@ def read_csv_rows(path):
         return list(csv.DictReader(f))
 
 
+def lost_disco(disco):
+    """A copy of disco outside its tree: it finds no settings file under its prefix and exits 2,
+    as it does for a scene it refuses."""
+    lost = os.path.join(WORK, "lost", "bin")
+    os.makedirs(lost, exist_ok=True)
+    return shutil.copy(disco, os.path.join(lost, "disco"))
+
+
 def test_bench_starts(disco):
     """scripts/bench_starts --others --jobs: the other scenes' set, refused scenes, and answers
     that do not depend on how many run at a time."""
@@ -297,9 +306,7 @@ def test_bench_starts(disco):
     # A baseline that cannot run (a copy of disco outside its tree: no settings file under its
     # prefix, exit 2 like a refused scene) stops the run, naming the command and its error;
     # its starts are not taken for refused scenes.
-    lost = os.path.join(WORK, "lost", "bin")
-    os.makedirs(lost, exist_ok=True)
-    copy = shutil.copy(disco, os.path.join(lost, "disco"))
+    copy = lost_disco(disco)
     r = run_script("bench_starts", "--disco", disco, "--others", "--scenes", "stress/too_weak",
                    "--starts", "0", "--baseline", copy, "--out", os.path.join(WORK, "starts_lost"),
                    "--no-results")
@@ -335,6 +342,14 @@ def test_random(disco):
     r = run_script("bench_random", "--disco", disco, "--baseline", disco, "--count", "2", "--seed", "3",
                    "--time-limit", "5", "--out", out, "--results", md)
     check(r.returncode == 0, f"bench_random exits 0 ({r.returncode})" + (r.stderr if r.returncode else ""))
+    # A baseline that cannot run stops it at its first scene, naming the command and its error
+    # (its rows are not "refused").
+    lost = lost_disco(disco)
+    r = run_script("bench_random", "--disco", disco, "--baseline", lost, "--count", "1", "--seed", "3",
+                   "--time-limit", "5", "--out", os.path.join(WORK, "random_lost"), "--no-results")
+    check(r.returncode == 1 and lost in r.stderr and "no settings file" in r.stderr
+          and "Traceback" not in r.stderr,
+          f"bench_random: a baseline without settings stops it ({r.returncode}: {r.stderr[-600:]})")
     label = "default (partial: --count 2 --seed 3 --time-limit 5)"
     check(sections(md) == [label], f"a partial section ({sections(md)})")
     text = section_text(md, label) if label in sections(md) else ""

@@ -64,6 +64,16 @@ class Run:
     solution: Optional[dict]    # solution.json, or None when it wrote none
     lines: list = field(default_factory=list)   # the solve log (SolveLine)
 
+    def refused(self):
+        """disco refused the scene as bad input: exit 2 with an error naming the scene's file
+        (file, line and key). Any other exit 2 (no settings file under the binary's prefix, a bad
+        --set) is the run's own error, not the scene's."""
+        return self.exit == 2 and self.cmd[2] in self.stderr
+
+    def failure(self):
+        """A one-line account of a run that failed on its own (for a script to stop with)."""
+        return f"{' '.join(self.cmd)} exited {self.exit}:\n{self.stderr[-2000:]}"
+
     def get(self, *keys):
         """solution[k1][k2]..., or None where anything is missing."""
         v = self.solution
