@@ -71,7 +71,8 @@ class Run:
         return self.exit == 2 and self.cmd[2] in self.stderr
 
     def failure(self):
-        """A one-line account of a run that failed on its own (for a script to stop with)."""
+        """An account of a run that failed on its own: the command, its exit and the end of its
+        stderr (for a script to stop with)."""
         return f"{' '.join(self.cmd)} exited {self.exit}:\n{self.stderr[-2000:]}"
 
     def get(self, *keys):
